@@ -1,0 +1,34 @@
+//! shadelab's renderer: meshes, vertex normals, the camera, the Phong
+//! reflection model, clipping, and the scanline rasterizer that draws flat,
+//! Gouraud and Phong shading. No I/O: formats live in `shadelab-io`.
+//!
+//! Conventions (the project's `docs/conventions.md` is the full table): world
+//! right-handed with +y up; OpenGL projection with NDC z in [-1, 1] and depth
+//! test "less"; window row 0 at the top; pixel centres at half-integers; top-left
+//! fill rule; front faces counter-clockwise as the viewer sees them.
+#![warn(missing_docs)]
+
+mod camera;
+mod clip;
+mod color;
+mod image;
+mod lighting;
+mod mesh;
+mod models;
+mod normals;
+pub mod raster;
+mod render;
+
+pub use camera::{Camera, CameraError};
+pub use clip::{clip_polygon, ClipVertex};
+pub use color::{Rgb, Rgb8};
+pub use image::Image;
+pub use lighting::{Light, LightKind, Lighting, Material, Terms};
+pub use mesh::{CornerNormals, Mesh, MeshError};
+pub use models::{builtin_model, builtin_model_info, ModelError, ModelInfo, BUILTIN_MODELS};
+pub use normals::{face_normal, face_normal_unnormalized, face_normals, vertex_normals, NormalWeighting};
+pub use raster::Interpolation;
+pub use render::{
+    coverage, render, RenderError, RenderOptions, RenderStats, Scene, Shading, MAX_IMAGE_PIXELS,
+    MAX_IMAGE_SIDE,
+};

@@ -1,0 +1,239 @@
+//! Polygon meshes: positions and convex polygons that index them.
+//!
+//! A mesh keeps polygons as they came (triangles, quads, n-gons) because the
+//! scanline rasterizer interpolates over a polygon directly, as the textbook
+//! does; triangulating would change what Gouraud shading shows on a quad.
+
+use glam::Vec3;
+
+/// Why a mesh could not be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MeshError {
+    /// The mesh has no polygon at all.
+    #[error("the mesh has no faces")]
+    NoFaces,
+    /// A polygon has fewer than three corners.
+    #[error("face {face} has {corners} corners; a face needs at least 3")]
+    TooFewCorners {
+        /// Index of the face.
+        face: usize,
+        /// How many corners it has.
+        corners: usize,
+    },
+    /// A polygon refers to a vertex that does not exist.
+    #[error("face {face} refers to vertex {index}, but the mesh has {count} vertices")]
+    IndexOutOfRange {
+        /// Index of the face.
+        face: usize,
+        /// The offending vertex index.
+        index: u32,
+        /// How many vertices there are.
+        count: usize,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("vertex {vertex} has a coordinate that is not a finite number: {position}")]
+    NonFinite {
+        /// Index of the vertex.
+        vertex: usize,
+        /// The position as read.
+        position: Vec3,
+    },
+    /// Per-corner normals do not match the polygons.
+    #[error("normals: {0}")]
+    Normals(String),
+    /// The mesh exceeds [`Mesh::MAX_CORNERS`].
+    #[error("the mesh has {0} face corners; at most {max} are supported", max = Mesh::MAX_CORNERS)]
+    TooLarge(usize),
+}
+
+/// One normal per polygon corner, by index into a table of unit normals.
+///
+/// Corners that share a normal share its index, so a renderer can light each
+/// distinct (position, normal) pair once.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CornerNormals {
+    /// Distinct unit normals.
+    pub normals: Vec<Vec3>,
+    /// For each corner of each polygon, in [`Mesh::corners`] order, an index into `normals`.
+    pub corner: Vec<u32>,
+}
+
+/// A polygon mesh: vertex positions and convex polygons wound counter-clockwise
+/// as seen from outside.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    positions: Vec<Vec3>,
+    corners: Vec<u32>,
+    offsets: Vec<u32>,
+    file_normals: Option<CornerNormals>,
+}
+
+impl Mesh {
+    /// The largest number of polygon corners a mesh may have (2^28, about 89
+    /// million triangles), so that every index fits comfortably in `u32`.
+    pub const MAX_CORNERS: usize = 1 << 28;
+
+    /// Builds a mesh from positions and polygons given as lists of vertex indices.
+    ///
+    /// # Errors
+    /// [`MeshError`] when there is no polygon, a polygon has fewer than three
+    /// corners, an index is out of range or a position is not finite.
+    pub fn from_polygons<P: AsRef<[u32]>>(
+        positions: Vec<Vec3>,
+        polygons: impl IntoIterator<Item = P>,
+    ) -> Result<Mesh, MeshError> {
+        let mut corners = Vec::new();
+        let mut offsets = vec![0u32];
+        for polygon in polygons {
+            let polygon = polygon.as_ref();
+            if corners.len() + polygon.len() > Self::MAX_CORNERS {
+                return Err(MeshError::TooLarge(corners.len() + polygon.len()));
+            }
+            corners.extend_from_slice(polygon);
+            offsets.push(corners.len() as u32);
+        }
+        let mesh = Mesh {
+            positions,
+            corners,
+            offsets,
+            file_normals: None,
+        };
+        mesh.validate()?;
+        Ok(mesh)
+    }
+
+    /// Attaches normals that came with the model (an OBJ file's `vn`).
+    ///
+    /// # Errors
+    /// [`MeshError::Normals`] when there is not one index per corner, an index
+    /// is out of range, or a normal is not finite and non-zero.
+    pub fn with_file_normals(mut self, normals: CornerNormals) -> Result<Mesh, MeshError> {
+        if normals.corner.len() != self.corners.len() {
+            return Err(MeshError::Normals(format!(
+                "{} normal indices for {} face corners",
+                normals.corner.len(),
+                self.corners.len()
+            )));
+        }
+        if let Some(&i) = normals
+            .corner
+            .iter()
+            .find(|&&i| i as usize >= normals.normals.len())
+        {
+            return Err(MeshError::Normals(format!(
+                "normal index {i} out of range ({} normals)",
+                normals.normals.len()
+            )));
+        }
+        let mut normals = normals;
+        for (k, n) in normals.normals.iter_mut().enumerate() {
+            *n = n.try_normalize().ok_or_else(|| {
+                MeshError::Normals(format!("normal {k} ({n}) is zero or not finite"))
+            })?;
+        }
+        self.file_normals = Some(normals);
+        Ok(self)
+    }
+
+    fn validate(&self) -> Result<(), MeshError> {
+        if self.polygon_count() == 0 {
+            return Err(MeshError::NoFaces);
+        }
+        if let Some((vertex, &position)) = self
+            .positions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !p.is_finite())
+        {
+            return Err(MeshError::NonFinite { vertex, position });
+        }
+        for face in 0..self.polygon_count() {
+            let polygon = self.polygon(face);
+            if polygon.len() < 3 {
+                return Err(MeshError::TooFewCorners {
+                    face,
+                    corners: polygon.len(),
+                });
+            }
+            if let Some(&index) = polygon
+                .iter()
+                .find(|&&i| i as usize >= self.positions.len())
+            {
+                return Err(MeshError::IndexOutOfRange {
+                    face,
+                    index,
+                    count: self.positions.len(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Vertex positions.
+    pub fn positions(&self) -> &[Vec3] {
+        &self.positions
+    }
+
+    /// Every polygon's vertex indices, one polygon after another.
+    pub fn corners(&self) -> &[u32] {
+        &self.corners
+    }
+
+    /// Number of polygons.
+    pub fn polygon_count(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// Range of polygon `face`'s corners within [`Mesh::corners`].
+    pub fn corner_range(&self, face: usize) -> std::ops::Range<usize> {
+        self.offsets[face] as usize..self.offsets[face + 1] as usize
+    }
+
+    /// The vertex indices of polygon `face`.
+    pub fn polygon(&self, face: usize) -> &[u32] {
+        &self.corners[self.corner_range(face)]
+    }
+
+    /// Number of polygons that are triangles after fan triangulation.
+    pub fn triangle_count(&self) -> usize {
+        (0..self.polygon_count())
+            .map(|f| self.polygon(f).len() - 2)
+            .sum()
+    }
+
+    /// Normals that came with the model, if any.
+    pub fn file_normals(&self) -> Option<&CornerNormals> {
+        self.file_normals.as_ref()
+    }
+
+    /// The axis-aligned bounding box, as (min, max).
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        let used = self.corners.iter().map(|&i| self.positions[i as usize]);
+        used.fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(p), hi.max(p)),
+        )
+    }
+
+    /// Moves and scales the mesh so its bounding box is centred on the origin
+    /// and its farthest vertex is at distance 1 from it.
+    pub fn normalized(mut self) -> Mesh {
+        let (lo, hi) = self.bounds();
+        let centre = (lo + hi) * 0.5;
+        let radius = self
+            .corners
+            .iter()
+            .map(|&i| (self.positions[i as usize] - centre).length())
+            .fold(0.0f32, f32::max);
+        let scale = if radius > 0.0 && radius.is_finite() {
+            1.0 / radius
+        } else {
+            1.0
+        };
+        for p in &mut self.positions {
+            *p = (*p - centre) * scale;
+        }
+        self
+    }
+}

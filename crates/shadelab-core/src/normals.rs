@@ -1,0 +1,166 @@
+//! Face normals and vertex normals.
+//!
+//! A face normal is the cross product of two edges for a triangle and Newell's
+//! method for a polygon of more than three vertices (robust for slightly
+//! non-planar quads). A vertex normal is the normalised, weighted sum of the
+//! unit normals of the faces around the vertex; with a crease angle, a face
+//! only takes part in a corner's normal when it bends from that corner's face
+//! by no more than the angle, which splits vertices along sharp edges.
+
+use std::collections::HashMap;
+
+use glam::Vec3;
+
+use crate::mesh::{CornerNormals, Mesh};
+
+/// How the faces around a vertex are weighted in its normal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum NormalWeighting {
+    /// Every adjacent face counts the same: the textbook rule.
+    Uniform,
+    /// Faces weighted by their area.
+    Area,
+    /// Faces weighted by the angle of their corner at the vertex.
+    Angle,
+}
+
+/// The face normal of a polygon, not normalised: twice the polygon's area in
+/// length for a planar polygon, zero for a degenerate one.
+pub fn face_normal_unnormalized(points: &[Vec3]) -> Vec3 {
+    match points {
+        [a, b, c] => (*b - *a).cross(*c - *a),
+        _ => {
+            // Newell's method.
+            let mut n = Vec3::ZERO;
+            for (i, &p) in points.iter().enumerate() {
+                let q = points[(i + 1) % points.len()];
+                n += Vec3::new(
+                    (p.y - q.y) * (p.z + q.z),
+                    (p.z - q.z) * (p.x + q.x),
+                    (p.x - q.x) * (p.y + q.y),
+                );
+            }
+            n
+        }
+    }
+}
+
+/// The unit face normal of a polygon, or `None` for a degenerate one.
+pub fn face_normal(points: &[Vec3]) -> Option<Vec3> {
+    face_normal_unnormalized(points).try_normalize()
+}
+
+/// The unit face normal of each polygon of `mesh`, `None` where degenerate.
+pub fn face_normals(mesh: &Mesh) -> Vec<Option<Vec3>> {
+    let mut points = Vec::new();
+    (0..mesh.polygon_count())
+        .map(|f| {
+            points.clear();
+            points.extend(mesh.polygon(f).iter().map(|&i| mesh.positions()[i as usize]));
+            face_normal(&points)
+        })
+        .collect()
+}
+
+/// Vertex normals of `mesh` with the given weighting, one per corner.
+///
+/// With `crease_degrees`, a corner's normal only sums the faces around its
+/// vertex whose normal is within that angle of its own face's normal.
+/// A corner whose sum vanishes (or whose face is degenerate) falls back to
+/// its face normal, or +z for a degenerate face.
+pub fn vertex_normals(
+    mesh: &Mesh,
+    weighting: NormalWeighting,
+    crease_degrees: Option<f32>,
+) -> CornerNormals {
+    let positions = mesh.positions();
+    let faces = face_normals(mesh);
+    let mut points = Vec::new();
+    // Weighted contribution of each corner's face to its vertex.
+    let mut contribution = vec![Vec3::ZERO; mesh.corners().len()];
+    for (f, normal) in faces.iter().enumerate() {
+        let Some(normal) = *normal else { continue };
+        let range = mesh.corner_range(f);
+        points.clear();
+        points.extend(mesh.corners()[range.clone()].iter().map(|&i| positions[i as usize]));
+        let n = points.len();
+        for (k, c) in range.enumerate() {
+            let weight = match weighting {
+                NormalWeighting::Uniform => 1.0,
+                NormalWeighting::Area => 0.5 * face_normal_unnormalized(&points).length(),
+                NormalWeighting::Angle => {
+                    let p = points[k];
+                    let prev = (points[(k + n - 1) % n] - p).normalize_or_zero();
+                    let next = (points[(k + 1) % n] - p).normalize_or_zero();
+                    prev.dot(next).clamp(-1.0, 1.0).acos()
+                }
+            };
+            contribution[c] = normal * weight;
+        }
+    }
+
+    let fallback = |f: usize| faces[f].unwrap_or(Vec3::Z);
+    let corner_face: Vec<usize> = (0..mesh.polygon_count())
+        .flat_map(|f| mesh.corner_range(f).map(move |_| f))
+        .collect();
+
+    match crease_degrees {
+        None => {
+            let mut sum = vec![Vec3::ZERO; positions.len()];
+            for (c, &v) in mesh.corners().iter().enumerate() {
+                sum[v as usize] += contribution[c];
+            }
+            let mut normals: Vec<Vec3> = sum.iter().map(|s| s.normalize_or_zero()).collect();
+            let corner = mesh
+                .corners()
+                .iter()
+                .enumerate()
+                .map(|(c, &v)| {
+                    if normals[v as usize] == Vec3::ZERO {
+                        normals.push(fallback(corner_face[c]));
+                        (normals.len() - 1) as u32
+                    } else {
+                        v
+                    }
+                })
+                .collect();
+            CornerNormals { normals, corner }
+        }
+        Some(degrees) => {
+            let cos_limit = degrees.to_radians().cos();
+            let mut corners_of_vertex = vec![Vec::new(); positions.len()];
+            for (c, &v) in mesh.corners().iter().enumerate() {
+                corners_of_vertex[v as usize].push(c as u32);
+            }
+            let mut normals = Vec::new();
+            let mut seen: HashMap<(u32, [u32; 3]), u32> = HashMap::new();
+            let corner = mesh
+                .corners()
+                .iter()
+                .enumerate()
+                .map(|(c, &v)| {
+                    let own = faces[corner_face[c]];
+                    let n = own
+                        .and_then(|own| {
+                            corners_of_vertex[v as usize]
+                                .iter()
+                                .filter(|&&o| {
+                                    faces[corner_face[o as usize]]
+                                        .is_some_and(|fo| fo.dot(own) >= cos_limit - 1e-6)
+                                })
+                                .map(|&o| contribution[o as usize])
+                                .sum::<Vec3>()
+                                .try_normalize()
+                        })
+                        .unwrap_or_else(|| fallback(corner_face[c]));
+                    let key = (v, n.to_array().map(f32::to_bits));
+                    *seen.entry(key).or_insert_with(|| {
+                        normals.push(n);
+                        (normals.len() - 1) as u32
+                    })
+                })
+                .collect();
+            CornerNormals { normals, corner }
+        }
+    }
+}

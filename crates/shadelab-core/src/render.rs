@@ -1,0 +1,534 @@
+//! The frame pipeline: per-vertex transform, per-polygon clipping, culling
+//! and projection, rasterization, and one of the three shading methods.
+//!
+//! The methods differ only in what they attach to a polygon's corners and
+//! what they do per fragment:
+//!
+//! | method  | lighting evaluated          | interpolated            |
+//! |---------|-----------------------------|-------------------------|
+//! | flat    | once per polygon (centroid) | nothing but depth       |
+//! | Gouraud | once per distinct vertex    | the vertex colours      |
+//! | Phong   | once per pixel              | normal, world position  |
+//!
+//! Facing is decided from the snapped window polygon, as OpenGL does. A
+//! back-facing polygon drawn with culling off is lit with its normals turned
+//! towards the viewer and re-wound, so the rasterizer only ever sees
+//! counter-clockwise polygons.
+
+use std::collections::HashMap;
+
+use glam::{Mat4, Vec3, Vec4};
+
+use crate::camera::{Camera, CameraError};
+use crate::clip::{clip_polygon, ClipVertex};
+use crate::color::{Rgb, Rgb8};
+use crate::image::Image;
+use crate::lighting::{Light, Lighting, Material, Terms};
+use crate::mesh::{CornerNormals, Mesh};
+use crate::normals::face_normals;
+use crate::raster::scanline::rasterize_polygon;
+use crate::raster::{signed_area_ccw, snap, FragmentSink, Interpolation, ScreenVertex};
+
+/// Largest image side, in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// Largest image, in pixels (64 Mpixel, about 450 MiB of colour and depth).
+pub const MAX_IMAGE_PIXELS: u64 = 1 << 26;
+
+/// The three classic shading methods.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Shading {
+    /// One lighting evaluation per polygon.
+    Flat,
+    /// Lighting per vertex, colours interpolated.
+    Gouraud,
+    /// Normals interpolated and lit per pixel.
+    #[default]
+    Phong,
+}
+
+impl Shading {
+    /// All three, in the order they are usually shown.
+    pub const ALL: [Shading; 3] = [Shading::Flat, Shading::Gouraud, Shading::Phong];
+
+    /// The lower-case name used in files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Shading::Flat => "flat",
+            Shading::Gouraud => "gouraud",
+            Shading::Phong => "phong",
+        }
+    }
+
+    /// The display name ("Flat", "Gouraud", "Phong").
+    pub fn title(self) -> &'static str {
+        match self {
+            Shading::Flat => "Flat",
+            Shading::Gouraud => "Gouraud",
+            Shading::Phong => "Phong",
+        }
+    }
+}
+
+/// What to draw: a mesh with its vertex normals, a camera and the lighting.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The model.
+    pub mesh: Mesh,
+    /// One normal per corner of `mesh` (see [`crate::vertex_normals`]).
+    pub normals: CornerNormals,
+    /// The viewer.
+    pub camera: Camera,
+    /// Ambient light, colour times intensity (`Ia`).
+    pub ambient: Rgb,
+    /// Point and directional lights.
+    pub lights: Vec<Light>,
+    /// The surface.
+    pub material: Material,
+}
+
+/// How to draw it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderOptions {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Shading method.
+    pub shading: Shading,
+    /// Colour where nothing is drawn.
+    pub background: Rgb8,
+    /// Skip polygons facing away from the viewer.
+    pub cull_backfaces: bool,
+    /// Let Gouraud shading include the specular term at the vertices.
+    pub gouraud_specular: bool,
+    /// Perspective-correct or screen-linear attributes.
+    pub interpolation: Interpolation,
+}
+
+impl Default for RenderOptions {
+    fn default() -> RenderOptions {
+        RenderOptions {
+            width: 800,
+            height: 600,
+            shading: Shading::Phong,
+            background: Rgb8::new(0, 0, 0),
+            cull_backfaces: true,
+            gouraud_specular: false,
+            interpolation: Interpolation::Perspective,
+        }
+    }
+}
+
+/// Why a frame could not be rendered.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum RenderError {
+    /// The image size is zero or too large.
+    #[error("image size {width}x{height} is out of range: each side 1..={MAX_IMAGE_SIDE}, at most {MAX_IMAGE_PIXELS} pixels")]
+    ImageSize {
+        /// Requested width.
+        width: u32,
+        /// Requested height.
+        height: u32,
+    },
+    /// The camera is unusable.
+    #[error(transparent)]
+    Camera(#[from] CameraError),
+    /// The normals do not belong to the mesh.
+    #[error("the scene has {normals} corner normals for {corners} face corners")]
+    NormalsMismatch {
+        /// Corner normals given.
+        normals: usize,
+        /// Corners in the mesh.
+        corners: usize,
+    },
+    /// A light or material value is not a finite number.
+    #[error("{0} is not a finite number")]
+    NonFinite(&'static str),
+}
+
+/// What a frame cost and what it did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RenderStats {
+    /// Polygons in the mesh.
+    pub polygons: u64,
+    /// Polygons skipped because their area is zero in 3D.
+    pub degenerate: u64,
+    /// Polygons entirely outside the view volume, or of zero area on screen.
+    pub invisible: u64,
+    /// Polygons culled as back faces.
+    pub culled: u64,
+    /// Polygons rasterized.
+    pub rasterized: u64,
+    /// Pixels that passed the depth test and were shaded.
+    pub fragments_shaded: u64,
+    /// Evaluations of the reflection model.
+    pub lighting_evaluations: u64,
+}
+
+/// Renders `scene` with the scanline rasterizer.
+///
+/// # Errors
+/// [`RenderError`] when the options, camera, normals or lighting are invalid.
+pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderStats), RenderError> {
+    validate(scene, options)?;
+    let mut frame = Frame {
+        color: Image::filled(options.width, options.height, options.background),
+        depth: vec![1.0; options.width as usize * options.height as usize],
+        width: options.width,
+    };
+    let stats = draw(scene, options, &mut frame);
+    Ok((frame.color, stats))
+}
+
+/// How many polygons cover each pixel, row by row, with no depth test: the
+/// geometry stage of [`render`] with the colour left out. A closed convex
+/// mesh seen from outside covers its silhouette exactly once.
+///
+/// # Errors
+/// As [`render`].
+pub fn coverage(scene: &Scene, options: &RenderOptions) -> Result<Vec<u32>, RenderError> {
+    validate(scene, options)?;
+    let mut counter = CoverageCounter {
+        counts: vec![0; options.width as usize * options.height as usize],
+        width: options.width,
+    };
+    let options = RenderOptions {
+        shading: Shading::Flat,
+        ..*options
+    };
+    draw(scene, &options, &mut counter);
+    Ok(counter.counts)
+}
+
+fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
+    let (w, h) = (options.width, options.height);
+    if w == 0 || h == 0 || w > MAX_IMAGE_SIDE || h > MAX_IMAGE_SIDE || u64::from(w) * u64::from(h) > MAX_IMAGE_PIXELS {
+        return Err(RenderError::ImageSize { width: w, height: h });
+    }
+    scene.camera.validate()?;
+    if scene.normals.corner.len() != scene.mesh.corners().len()
+        || scene.normals.corner.iter().any(|&i| i as usize >= scene.normals.normals.len())
+    {
+        return Err(RenderError::NormalsMismatch {
+            normals: scene.normals.corner.len(),
+            corners: scene.mesh.corners().len(),
+        });
+    }
+    let m = &scene.material;
+    let rgb_finite = |c: Rgb| c.to_array().iter().all(|v| v.is_finite());
+    if !rgb_finite(scene.ambient) {
+        return Err(RenderError::NonFinite("ambient"));
+    }
+    if !(rgb_finite(m.ka) && rgb_finite(m.kd) && rgb_finite(m.ks) && m.shininess.is_finite()) {
+        return Err(RenderError::NonFinite("material"));
+    }
+    for light in &scene.lights {
+        let position_ok = match light.kind {
+            crate::lighting::LightKind::Point { position } => position.is_finite(),
+            crate::lighting::LightKind::Directional { direction } => direction.is_finite(),
+        };
+        if !(position_ok && rgb_finite(light.color) && light.intensity.is_finite()) {
+            return Err(RenderError::NonFinite("light"));
+        }
+    }
+    Ok(())
+}
+
+/// Where fragments go: a depth test, then (if it passes) a colour.
+trait Target {
+    /// Depth-tests pixel (`x`, `y`); true when it should be shaded and written.
+    fn test(&mut self, x: u32, y: u32, depth: f32) -> bool;
+    /// Writes the shaded colour of a pixel that passed [`Target::test`].
+    fn write(&mut self, x: u32, y: u32, color: Rgb8);
+}
+
+struct Frame {
+    color: Image,
+    depth: Vec<f32>,
+    width: u32,
+}
+
+impl Target for Frame {
+    fn test(&mut self, x: u32, y: u32, depth: f32) -> bool {
+        let d = &mut self.depth[y as usize * self.width as usize + x as usize];
+        // Depth test "less", and the near/far clip keeps depth within [0, 1].
+        if depth < *d {
+            *d = depth;
+            true
+        } else {
+            false
+        }
+    }
+
+    fn write(&mut self, x: u32, y: u32, color: Rgb8) {
+        self.color.set_pixel(x, y, color);
+    }
+}
+
+struct CoverageCounter {
+    counts: Vec<u32>,
+    width: u32,
+}
+
+impl Target for CoverageCounter {
+    fn test(&mut self, x: u32, y: u32, _depth: f32) -> bool {
+        self.counts[y as usize * self.width as usize + x as usize] += 1;
+        false
+    }
+
+    fn write(&mut self, _x: u32, _y: u32, _color: Rgb8) {}
+}
+
+/// What a shading method attaches to corners and computes per fragment.
+trait Method<const N: usize> {
+    /// The attributes at corner `corner` (vertex `vertex`), lit as a front
+    /// face or, with `back`, with the normal reversed.
+    fn corner(&mut self, corner: usize, vertex: u32, back: bool) -> [f32; N];
+    /// Called before polygon `face` is rasterized.
+    fn begin_polygon(&mut self, face: usize, corners: std::ops::Range<usize>, back: bool);
+    /// The colour of a fragment with interpolated attributes `attrs`.
+    fn shade(&mut self, attrs: &[f32; N]) -> Rgb8;
+    /// Lighting evaluations so far.
+    fn evaluations(&self) -> u64;
+}
+
+struct SceneRefs<'a> {
+    mesh: &'a Mesh,
+    normals: &'a CornerNormals,
+    faces: Vec<Option<Vec3>>,
+    lighting: Lighting,
+}
+
+impl SceneRefs<'_> {
+    fn corner_normal(&self, corner: usize) -> Vec3 {
+        self.normals.normals[self.normals.corner[corner] as usize]
+    }
+}
+
+struct FlatMethod<'a> {
+    scene: &'a SceneRefs<'a>,
+    color: Rgb8,
+    evaluations: u64,
+}
+
+impl Method<0> for FlatMethod<'_> {
+    fn corner(&mut self, _: usize, _: u32, _: bool) -> [f32; 0] {
+        []
+    }
+
+    fn begin_polygon(&mut self, face: usize, corners: std::ops::Range<usize>, back: bool) {
+        let mesh = self.scene.mesh;
+        let count = corners.len() as f32;
+        let centroid = corners
+            .map(|c| mesh.positions()[mesh.corners()[c] as usize])
+            .sum::<Vec3>()
+            / count;
+        let normal = self.scene.faces[face].unwrap_or(Vec3::Z);
+        let normal = if back { -normal } else { normal };
+        self.evaluations += 1;
+        self.color = Rgb8::from_rgb(self.scene.lighting.eval(centroid, normal, Terms::Full));
+    }
+
+    fn shade(&mut self, _: &[f32; 0]) -> Rgb8 {
+        self.color
+    }
+
+    fn evaluations(&self) -> u64 {
+        self.evaluations
+    }
+}
+
+struct GouraudMethod<'a> {
+    scene: &'a SceneRefs<'a>,
+    terms: Terms,
+    /// Colour per distinct (vertex, normal, facing): lit once per frame.
+    lit: HashMap<(u32, u32, bool), [f32; 3]>,
+}
+
+impl Method<3> for GouraudMethod<'_> {
+    fn corner(&mut self, corner: usize, vertex: u32, back: bool) -> [f32; 3] {
+        let scene = self.scene;
+        let terms = self.terms;
+        let normal_index = scene.normals.corner[corner];
+        *self.lit.entry((vertex, normal_index, back)).or_insert_with(|| {
+            let n = scene.corner_normal(corner);
+            let n = if back { -n } else { n };
+            let p = scene.mesh.positions()[vertex as usize];
+            scene.lighting.eval(p, n, terms).clamped().to_array()
+        })
+    }
+
+    fn begin_polygon(&mut self, _: usize, _: std::ops::Range<usize>, _: bool) {}
+
+    fn shade(&mut self, attrs: &[f32; 3]) -> Rgb8 {
+        Rgb8::from_rgb(Rgb::from_array(*attrs))
+    }
+
+    fn evaluations(&self) -> u64 {
+        self.lit.len() as u64
+    }
+}
+
+struct PhongMethod<'a> {
+    scene: &'a SceneRefs<'a>,
+    flip: f32,
+    evaluations: u64,
+}
+
+impl Method<6> for PhongMethod<'_> {
+    fn corner(&mut self, corner: usize, vertex: u32, _: bool) -> [f32; 6] {
+        let n = self.scene.corner_normal(corner);
+        let p = self.scene.mesh.positions()[vertex as usize];
+        [n.x, n.y, n.z, p.x, p.y, p.z]
+    }
+
+    fn begin_polygon(&mut self, _: usize, _: std::ops::Range<usize>, back: bool) {
+        self.flip = if back { -1.0 } else { 1.0 };
+    }
+
+    fn shade(&mut self, a: &[f32; 6]) -> Rgb8 {
+        let n = (Vec3::new(a[0], a[1], a[2]) * self.flip).normalize_or_zero();
+        let p = Vec3::new(a[3], a[4], a[5]);
+        self.evaluations += 1;
+        Rgb8::from_rgb(self.scene.lighting.eval(p, n, Terms::Full))
+    }
+
+    fn evaluations(&self) -> u64 {
+        self.evaluations
+    }
+}
+
+/// Connects the rasterizer to a target and a shading method.
+struct ShadingSink<'a, const N: usize, M, T> {
+    method: &'a mut M,
+    target: &'a mut T,
+    shaded: u64,
+}
+
+impl<const N: usize, M: Method<N>, T: Target> FragmentSink<N> for ShadingSink<'_, N, M, T> {
+    fn fragment(&mut self, x: u32, y: u32, depth: f32, attrs: &[f32; N]) {
+        if self.target.test(x, y, depth) {
+            self.shaded += 1;
+            let color = self.method.shade(attrs);
+            self.target.write(x, y, color);
+        }
+    }
+}
+
+/// The guard band, in NDC units, that keeps window coordinates within ±2^20
+/// pixels, so snapped edge arithmetic fits in `i64` with room to spare.
+pub(crate) fn guard_band(width: u32, height: u32) -> f32 {
+    ((1u32 << 20) as f32 / width.max(height) as f32 - 1.0).max(1.0)
+}
+
+/// The perspective divide and viewport transform, then snapping.
+pub(crate) fn to_window<const N: usize>(v: &ClipVertex<N>, width: u32, height: u32) -> ScreenVertex<N> {
+    let inv_w = 1.0 / f64::from(v.clip.w);
+    let x = (f64::from(v.clip.x) * inv_w + 1.0) * 0.5 * f64::from(width);
+    let y = (1.0 - f64::from(v.clip.y) * inv_w) * 0.5 * f64::from(height);
+    let depth = (f64::from(v.clip.z) * inv_w + 1.0) * 0.5;
+    ScreenVertex {
+        x: snap(x),
+        y: snap(y),
+        depth: depth as f32,
+        inv_w: inv_w as f32,
+        attrs: v.attrs,
+    }
+}
+
+fn draw(scene: &Scene, options: &RenderOptions, target: &mut impl Target) -> RenderStats {
+    let aspect = options.width as f32 / options.height as f32;
+    let view_projection = scene.camera.projection(aspect) * scene.camera.view();
+    let refs = SceneRefs {
+        mesh: &scene.mesh,
+        normals: &scene.normals,
+        faces: face_normals(&scene.mesh),
+        lighting: Lighting {
+            ambient: scene.ambient,
+            lights: scene.lights.clone(),
+            material: scene.material,
+            eye: scene.camera.eye,
+        },
+    };
+    match options.shading {
+        Shading::Flat => {
+            let mut m = FlatMethod { scene: &refs, color: Rgb8::default(), evaluations: 0 };
+            draw_with(&refs, options, view_projection, &mut m, target)
+        }
+        Shading::Gouraud => {
+            let terms = if options.gouraud_specular { Terms::Full } else { Terms::AmbientDiffuse };
+            let mut m = GouraudMethod { scene: &refs, terms, lit: HashMap::new() };
+            draw_with(&refs, options, view_projection, &mut m, target)
+        }
+        Shading::Phong => {
+            let mut m = PhongMethod { scene: &refs, flip: 1.0, evaluations: 0 };
+            draw_with(&refs, options, view_projection, &mut m, target)
+        }
+    }
+}
+
+fn draw_with<const N: usize, M: Method<N>, T: Target>(
+    scene: &SceneRefs<'_>,
+    options: &RenderOptions,
+    view_projection: Mat4,
+    method: &mut M,
+    target: &mut T,
+) -> RenderStats {
+    let (width, height) = (options.width, options.height);
+    let mesh = scene.mesh;
+    let clip_positions: Vec<Vec4> = mesh
+        .positions()
+        .iter()
+        .map(|p| view_projection * p.extend(1.0))
+        .collect();
+    let guard = guard_band(width, height);
+    let mut stats = RenderStats { polygons: mesh.polygon_count() as u64, ..RenderStats::default() };
+    let (mut input, mut clipped, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
+    let mut window: Vec<ScreenVertex<N>> = Vec::new();
+    let mut shaded = 0;
+
+    let mut project = |method: &mut M, face: usize, back: bool, window: &mut Vec<ScreenVertex<N>>| {
+        input.clear();
+        for c in mesh.corner_range(face) {
+            let vertex = mesh.corners()[c];
+            input.push(ClipVertex {
+                clip: clip_positions[vertex as usize],
+                attrs: method.corner(c, vertex, back),
+            });
+        }
+        clip_polygon(&input, guard, &mut clipped, &mut scratch);
+        window.clear();
+        window.extend(clipped.iter().map(|v| to_window(v, width, height)));
+    };
+
+    for face in 0..mesh.polygon_count() {
+        if scene.faces[face].is_none() {
+            stats.degenerate += 1;
+            continue;
+        }
+        project(method, face, false, &mut window);
+        let area = signed_area_ccw(&window);
+        if window.len() < 3 || area == 0 {
+            stats.invisible += 1;
+            continue;
+        }
+        let back = area < 0;
+        if back {
+            if options.cull_backfaces {
+                stats.culled += 1;
+                continue;
+            }
+            project(method, face, true, &mut window);
+            window.reverse();
+        }
+        stats.rasterized += 1;
+        method.begin_polygon(face, mesh.corner_range(face), back);
+        let mut sink = ShadingSink { method: &mut *method, target: &mut *target, shaded: 0 };
+        rasterize_polygon(&window, width, height, options.interpolation, &mut sink);
+        shaded += sink.shaded;
+    }
+    stats.fragments_shaded = shaded;
+    stats.lighting_evaluations = method.evaluations();
+    stats
+}

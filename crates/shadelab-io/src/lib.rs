@@ -1,0 +1,56 @@
+//! shadelab's file formats: OBJ meshes in, TOML scenes, PNG images out.
+#![warn(missing_docs)]
+
+mod obj;
+mod png;
+mod scene;
+
+pub use obj::{load_obj, parse_obj, MAX_OBJ_BYTES};
+pub use png::{encode_png, read_png, write_png};
+pub use scene::{
+    model_path, AmbientSection, CameraSection, InterpolationName, LightKindName, LightSection,
+    MaterialSection, ModelSection, NormalsChoice, RenderSection, SceneError, SceneFile,
+    ShadingName,
+};
+
+/// Why a mesh file could not be loaded.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum LoadError {
+    /// The file could not be read.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+    /// A line is malformed or refers to something that does not exist.
+    #[error("{path}:{line}: {message}")]
+    Syntax {
+        /// The file.
+        path: String,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file as a whole is not a usable mesh.
+    #[error("{path}: {message}")]
+    Invalid {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file is larger than the documented limit.
+    #[error("{path}: {bytes} bytes is more than the limit of {limit} bytes")]
+    TooLarge {
+        /// The file.
+        path: String,
+        /// Its size.
+        bytes: u64,
+        /// The limit.
+        limit: u64,
+    },
+}

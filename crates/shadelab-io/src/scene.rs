@@ -1,0 +1,454 @@
+//! The TOML scene format: every parameter of a render in one file.
+//!
+//! [`SceneFile`] mirrors the file (every section and key optional, with the
+//! documented defaults); command-line flags override its fields; then
+//! [`SceneFile::resolve`] checks every value, loads the model and builds the
+//! core's [`Scene`] and [`RenderOptions`]. Errors name the key at fault.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use serde::Deserialize;
+use shadelab_core::{
+    builtin_model, builtin_model_info, vertex_normals, Camera, Interpolation, Light, LightKind,
+    Material, Mesh, NormalWeighting, RenderOptions, Rgb, Rgb8, Scene, Shading, MAX_IMAGE_PIXELS,
+    MAX_IMAGE_SIDE,
+};
+
+use crate::{load_obj, LoadError};
+
+/// A scene file as written: every key optional.
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// `[model]`
+    #[serde(default)]
+    pub model: ModelSection,
+    /// `[camera]`; absent: the camera frames the model's bounding sphere.
+    pub camera: Option<CameraSection>,
+    /// `[ambient]`
+    #[serde(default)]
+    pub ambient: AmbientSection,
+    /// `[[lights]]`; absent: one white point light at (2, 2, 3).
+    pub lights: Option<Vec<LightSection>>,
+    /// `[material]`
+    #[serde(default)]
+    pub material: MaterialSection,
+    /// `[render]`
+    #[serde(default)]
+    pub render: RenderSection,
+}
+
+/// `[model]`
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSection {
+    /// A built-in model's name or a path to an .obj file (relative to the scene file).
+    pub source: Option<String>,
+    /// auto | file | uniform | area | angle
+    pub normals: Option<NormalsChoice>,
+    /// Degrees: no smoothing across sharper edges.
+    pub crease_angle: Option<f32>,
+    /// Tessellation level of a built-in model.
+    pub detail: Option<u32>,
+}
+
+/// Where vertex normals come from.
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum NormalsChoice {
+    /// The file's normals when it has them, else uniform.
+    #[default]
+    Auto,
+    /// The file's normals (an error when it has none).
+    File,
+    /// Unweighted average of adjacent face normals.
+    Uniform,
+    /// Area-weighted average.
+    Area,
+    /// Angle-weighted average.
+    Angle,
+}
+
+/// `[camera]`
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSection {
+    /// The viewer's position.
+    pub eye: [f32; 3],
+    /// The point looked at.
+    #[serde(default)]
+    pub target: [f32; 3],
+    /// Up on the screen.
+    #[serde(default = "default_up")]
+    pub up: [f32; 3],
+    /// Vertical field of view, degrees.
+    #[serde(default = "default_fov")]
+    pub fov_y: f32,
+    /// Near plane distance.
+    #[serde(default = "default_near")]
+    pub near: f32,
+    /// Far plane distance.
+    #[serde(default = "default_far")]
+    pub far: f32,
+}
+
+fn default_up() -> [f32; 3] {
+    [0.0, 1.0, 0.0]
+}
+fn default_fov() -> f32 {
+    45.0
+}
+fn default_near() -> f32 {
+    0.1
+}
+fn default_far() -> f32 {
+    100.0
+}
+
+/// `[ambient]`
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct AmbientSection {
+    /// RGB 0–255; default white.
+    pub color: Option<[i64; 3]>,
+    /// Default 0.2.
+    pub intensity: Option<f32>,
+}
+
+/// The kind of a light.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum LightKindName {
+    /// At a position.
+    Point,
+    /// At infinity, along a direction.
+    Directional,
+}
+
+/// `[[lights]]`
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LightSection {
+    /// point | directional
+    pub kind: LightKindName,
+    /// For a point light.
+    pub position: Option<[f32; 3]>,
+    /// For a directional light: the direction its rays travel.
+    pub direction: Option<[f32; 3]>,
+    /// RGB 0–255; default white.
+    pub color: Option<[i64; 3]>,
+    /// Default 1.
+    pub intensity: Option<f32>,
+}
+
+/// `[material]`
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSection {
+    /// Ambient reflectance, RGB 0–255.
+    pub ka: Option<[i64; 3]>,
+    /// Diffuse reflectance, RGB 0–255.
+    pub kd: Option<[i64; 3]>,
+    /// Specular reflectance, RGB 0–255.
+    pub ks: Option<[i64; 3]>,
+    /// Specular exponent, ≥ 0.
+    pub shininess: Option<f32>,
+}
+
+/// `[render]`
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct RenderSection {
+    /// Pixels; default 800.
+    pub width: Option<u32>,
+    /// Pixels; default 600.
+    pub height: Option<u32>,
+    /// flat | gouraud | phong; default phong.
+    pub shading: Option<ShadingName>,
+    /// RGB 0–255; default black.
+    pub background: Option<[i64; 3]>,
+    /// Default true.
+    pub cull_backfaces: Option<bool>,
+    /// Default false.
+    pub gouraud_specular: Option<bool>,
+    /// perspective | screen; default perspective.
+    pub interpolation: Option<InterpolationName>,
+    /// Degrees to orbit the camera about its up axis; default 0.
+    pub yaw: Option<f32>,
+    /// Degrees to orbit the camera towards its up axis; default 0.
+    pub pitch: Option<f32>,
+}
+
+/// A shading method's name in a file.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum ShadingName {
+    /// Flat.
+    Flat,
+    /// Gouraud.
+    Gouraud,
+    /// Phong.
+    Phong,
+}
+
+impl From<ShadingName> for Shading {
+    fn from(s: ShadingName) -> Shading {
+        match s {
+            ShadingName::Flat => Shading::Flat,
+            ShadingName::Gouraud => Shading::Gouraud,
+            ShadingName::Phong => Shading::Phong,
+        }
+    }
+}
+
+/// An interpolation mode's name in a file.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum InterpolationName {
+    /// Perspective-correct.
+    Perspective,
+    /// Screen-space linear.
+    Screen,
+}
+
+/// Why a scene could not be read or used.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SceneError {
+    /// The scene file could not be read.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+    /// The TOML is malformed, a key is unknown or a value has the wrong type.
+    #[error("{path}: {message}")]
+    Parse {
+        /// The file.
+        path: String,
+        /// The parser's message, with line and column.
+        message: String,
+    },
+    /// A value is out of range.
+    #[error("{key}: {message}")]
+    Value {
+        /// The key at fault, e.g. `material.shininess`.
+        key: String,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// The model could not be loaded.
+    #[error(transparent)]
+    Model(#[from] LoadError),
+}
+
+fn value_error(key: impl Into<String>, message: impl Into<String>) -> SceneError {
+    SceneError::Value { key: key.into(), message: message.into() }
+}
+
+impl SceneFile {
+    /// Reads a scene file.
+    ///
+    /// # Errors
+    /// [`SceneError::Io`] or [`SceneError::Parse`] (with line and column).
+    pub fn load(path: &Path) -> Result<SceneFile, SceneError> {
+        let name = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { path: name.clone(), source })?;
+        SceneFile::parse(&text, &name)
+    }
+
+    /// Parses scene TOML; `name` is used in error messages.
+    ///
+    /// # Errors
+    /// [`SceneError::Parse`].
+    pub fn parse(text: &str, name: &str) -> Result<SceneFile, SceneError> {
+        toml::from_str(text).map_err(|e| SceneError::Parse { path: name.to_owned(), message: e.to_string() })
+    }
+
+    /// Checks every value, loads the model (a relative path is taken from
+    /// `base_dir`) and builds what the renderer needs.
+    ///
+    /// # Errors
+    /// [`SceneError::Value`] naming the key, or [`SceneError::Model`].
+    pub fn resolve(&self, base_dir: &Path) -> Result<(Scene, RenderOptions), SceneError> {
+        let r = &self.render;
+        let width = r.width.unwrap_or(800);
+        let height = r.height.unwrap_or(600);
+        for (key, v) in [("render.width", width), ("render.height", height)] {
+            if v == 0 || v > MAX_IMAGE_SIDE {
+                return Err(value_error(key, format!("must be 1..={MAX_IMAGE_SIDE}, got {v}")));
+            }
+        }
+        if u64::from(width) * u64::from(height) > MAX_IMAGE_PIXELS {
+            return Err(value_error("render", format!("{width}x{height} exceeds {MAX_IMAGE_PIXELS} pixels")));
+        }
+        let options = RenderOptions {
+            width,
+            height,
+            shading: r.shading.map(Shading::from).unwrap_or_default(),
+            background: rgb8("render.background", r.background.unwrap_or([0, 0, 0]))?,
+            cull_backfaces: r.cull_backfaces.unwrap_or(true),
+            gouraud_specular: r.gouraud_specular.unwrap_or(false),
+            interpolation: match r.interpolation {
+                Some(InterpolationName::Screen) => Interpolation::Screen,
+                _ => Interpolation::Perspective,
+            },
+        };
+
+        let (mesh, default_crease) = self.load_model(base_dir)?;
+        let crease = match self.model.crease_angle {
+            Some(a) if !(a.is_finite() && (0.0..=180.0).contains(&a)) => {
+                return Err(value_error("model.crease_angle", format!("must be 0..=180 degrees, got {a}")));
+            }
+            Some(a) => Some(a),
+            None => default_crease,
+        };
+        let choice = self.model.normals.unwrap_or_default();
+        let normals = match (choice, mesh.file_normals()) {
+            (NormalsChoice::File, None) => {
+                return Err(value_error("model.normals", "\"file\" was asked for, but the model has no normals on every face"));
+            }
+            (NormalsChoice::File | NormalsChoice::Auto, Some(n)) => n.clone(),
+            (NormalsChoice::Auto | NormalsChoice::Uniform, _) => vertex_normals(&mesh, NormalWeighting::Uniform, crease),
+            (NormalsChoice::Area, _) => vertex_normals(&mesh, NormalWeighting::Area, crease),
+            (NormalsChoice::Angle, _) => vertex_normals(&mesh, NormalWeighting::Angle, crease),
+        };
+
+        let aspect = width as f32 / height as f32;
+        let (mesh, camera) = match &self.camera {
+            Some(c) => {
+                let camera = Camera {
+                    eye: vec3("camera.eye", c.eye)?,
+                    target: vec3("camera.target", c.target)?,
+                    up: vec3("camera.up", c.up)?,
+                    fov_y_degrees: c.fov_y,
+                    near: c.near,
+                    far: c.far,
+                };
+                camera.validate().map_err(|e| value_error("camera", e.to_string()))?;
+                (mesh, camera)
+            }
+            None => (mesh.normalized(), Camera::framing_sphere(Vec3::ZERO, 1.0, 45.0, aspect)),
+        };
+        let yaw = finite("render.yaw", r.yaw.unwrap_or(0.0))?;
+        let pitch = finite("render.pitch", r.pitch.unwrap_or(0.0))?;
+        let camera = camera.orbit(yaw, pitch);
+
+        let a = &self.ambient;
+        let ambient_intensity = non_negative("ambient.intensity", a.intensity.unwrap_or(0.2))?;
+        let ambient = rgb("ambient.color", a.color.unwrap_or([255; 3]))? * ambient_intensity;
+
+        let default_lights = [LightSection {
+            kind: LightKindName::Point,
+            position: Some([2.0, 2.0, 3.0]),
+            direction: None,
+            color: None,
+            intensity: None,
+        }];
+        let light_sections = self.lights.as_deref().unwrap_or(&default_lights);
+        let lights = light_sections
+            .iter()
+            .enumerate()
+            .map(|(k, l)| resolve_light(k, l))
+            .collect::<Result<Vec<_>, _>>()?;
+
+        let m = &self.material;
+        let material = Material {
+            ka: rgb("material.ka", m.ka.unwrap_or([255, 60, 60]))?,
+            kd: rgb("material.kd", m.kd.unwrap_or([255, 60, 60]))?,
+            ks: rgb("material.ks", m.ks.unwrap_or([255, 255, 255]))?,
+            shininess: non_negative("material.shininess", m.shininess.unwrap_or(32.0))?,
+        };
+        if material.shininess > 10_000.0 {
+            return Err(value_error("material.shininess", format!("must be at most 10000, got {}", material.shininess)));
+        }
+        Ok((Scene { mesh, normals, camera, ambient, lights, material }, options))
+    }
+
+    /// The model's mesh and its default crease angle.
+    fn load_model(&self, base_dir: &Path) -> Result<(Mesh, Option<f32>), SceneError> {
+        let source = self.model.source.as_deref().unwrap_or("teapot");
+        if let Some(info) = builtin_model_info(source) {
+            let mesh = builtin_model(source, self.model.detail).map_err(|e| value_error("model.detail", e.to_string()))?;
+            return Ok((mesh, info.default_crease_degrees));
+        }
+        if self.model.detail.is_some() {
+            return Err(value_error("model.detail", format!("only built-in models have a detail; {source:?} is a file")));
+        }
+        let path = model_path(source, base_dir);
+        if !path.exists() && !source.contains('.') && !source.contains('/') {
+            return Err(value_error(
+                "model.source",
+                format!("{source:?} is neither a built-in model ({}) nor an existing file", builtin_names()),
+            ));
+        }
+        Ok((load_obj(&path)?, None))
+    }
+}
+
+/// The built-in models' names, comma-separated.
+fn builtin_names() -> String {
+    shadelab_core::BUILTIN_MODELS.iter().map(|m| m.name).collect::<Vec<_>>().join(", ")
+}
+
+/// Where a model source that is not built in lives.
+pub fn model_path(source: &str, base_dir: &Path) -> PathBuf {
+    let p = Path::new(source);
+    if p.is_absolute() { p.to_path_buf() } else { base_dir.join(p) }
+}
+
+fn resolve_light(k: usize, l: &LightSection) -> Result<Light, SceneError> {
+    let key = |field: &str| format!("lights[{k}].{field}");
+    let kind = match (l.kind, l.position, l.direction) {
+        (LightKindName::Point, Some(p), None) => LightKind::Point { position: vec3(&key("position"), p)? },
+        (LightKindName::Directional, None, Some(d)) => {
+            let direction = vec3(&key("direction"), d)?;
+            if direction == Vec3::ZERO {
+                return Err(value_error(key("direction"), "must not be zero"));
+            }
+            LightKind::Directional { direction }
+        }
+        (LightKindName::Point, _, _) => {
+            return Err(value_error(key("position"), "a point light needs `position` and no `direction`"));
+        }
+        (LightKindName::Directional, _, _) => {
+            return Err(value_error(key("direction"), "a directional light needs `direction` and no `position`"));
+        }
+    };
+    Ok(Light {
+        kind,
+        color: rgb(&key("color"), l.color.unwrap_or([255; 3]))?,
+        intensity: non_negative(&key("intensity"), l.intensity.unwrap_or(1.0))?,
+    })
+}
+
+fn rgb8(key: &str, c: [i64; 3]) -> Result<Rgb8, SceneError> {
+    if let Some(v) = c.iter().find(|v| !(0..=255).contains(*v)) {
+        return Err(value_error(key, format!("each channel must be 0..=255, got {v}")));
+    }
+    Ok(Rgb8::new(c[0] as u8, c[1] as u8, c[2] as u8))
+}
+
+fn rgb(key: &str, c: [i64; 3]) -> Result<Rgb, SceneError> {
+    Ok(rgb8(key, c)?.to_rgb())
+}
+
+fn finite(key: &str, v: f32) -> Result<f32, SceneError> {
+    if v.is_finite() { Ok(v) } else { Err(value_error(key, format!("must be a finite number, got {v}"))) }
+}
+
+fn non_negative(key: &str, v: f32) -> Result<f32, SceneError> {
+    if v.is_finite() && v >= 0.0 { Ok(v) } else { Err(value_error(key, format!("must be a finite number ≥ 0, got {v}"))) }
+}
+
+fn vec3(key: &str, v: [f32; 3]) -> Result<Vec3, SceneError> {
+    let v = Vec3::from_array(v);
+    if v.is_finite() && v.abs().max_element() <= 1e30 {
+        Ok(v)
+    } else {
+        Err(value_error(key, format!("must be finite and within ±1e30, got {v}")))
+    }
+}

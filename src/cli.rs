@@ -1,0 +1,295 @@
+//! The command line: subcommands and the flags that override a scene file.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use shadelab_io::{
+    InterpolationName, LightKindName, LightSection, NormalsChoice, SceneFile, ShadingName,
+};
+
+/// Flat, Gouraud and Phong shading on an exact CPU rasterizer.
+#[derive(Debug, Parser)]
+#[command(name = "shadelab", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render one image with one shading method.
+    Render(RenderArgs),
+    /// Render flat, Gouraud and Phong side by side, labelled, in one image.
+    Compare(CompareArgs),
+    /// List the built-in models.
+    Models,
+}
+
+/// `shadelab render`
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// Scene file (TOML); flags override its values.
+    pub scene: Option<PathBuf>,
+    /// Shading method.
+    #[arg(long, value_enum)]
+    pub shading: Option<ShadingArg>,
+    /// Output PNG file.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Scene overrides.
+    #[command(flatten)]
+    pub overrides: SceneOverrides,
+}
+
+/// `shadelab compare`
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    /// Scene file (TOML); flags override its values.
+    pub scene: Option<PathBuf>,
+    /// Output PNG file.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Scene overrides (`--size` is the size of each panel).
+    #[command(flatten)]
+    pub overrides: SceneOverrides,
+}
+
+/// Flags that override the scene file, key by key.
+#[derive(Debug, Args, Default)]
+pub struct SceneOverrides {
+    /// Built-in model name or .obj path (`shadelab models` lists the built-ins).
+    #[arg(long)]
+    pub model: Option<String>,
+    /// Tessellation level of a built-in model.
+    #[arg(long)]
+    pub detail: Option<u32>,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+    /// Ambient light colour, R,G,B in 0–255.
+    #[arg(long, value_parser = parse_rgb)]
+    pub ambient: Option<[i64; 3]>,
+    /// Ambient light intensity.
+    #[arg(long, allow_negative_numbers = true)]
+    pub ambient_intensity: Option<f32>,
+    /// Position of the (first) light, X,Y,Z; makes it a point light.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub light_pos: Option<[f32; 3]>,
+    /// Colour of the (first) light, R,G,B in 0–255.
+    #[arg(long, value_parser = parse_rgb)]
+    pub light_color: Option<[i64; 3]>,
+    /// Intensity of the (first) light.
+    #[arg(long, allow_negative_numbers = true)]
+    pub light_intensity: Option<f32>,
+    /// Ambient reflectance Ka, R,G,B in 0–255.
+    #[arg(long, value_parser = parse_rgb)]
+    pub ka: Option<[i64; 3]>,
+    /// Diffuse reflectance Kd, R,G,B in 0–255.
+    #[arg(long, value_parser = parse_rgb)]
+    pub kd: Option<[i64; 3]>,
+    /// Specular reflectance Ks, R,G,B in 0–255.
+    #[arg(long, value_parser = parse_rgb)]
+    pub ks: Option<[i64; 3]>,
+    /// Specular exponent.
+    #[arg(long, allow_negative_numbers = true)]
+    pub shininess: Option<f32>,
+    /// Orbit the camera about the up axis, degrees.
+    #[arg(long, allow_negative_numbers = true)]
+    pub yaw: Option<f32>,
+    /// Orbit the camera towards the up axis, degrees.
+    #[arg(long, allow_negative_numbers = true)]
+    pub pitch: Option<f32>,
+    /// Vertex normals.
+    #[arg(long, value_enum)]
+    pub normals: Option<NormalsArg>,
+    /// No smoothing across edges sharper than this, degrees.
+    #[arg(long)]
+    pub crease_angle: Option<f32>,
+    /// Attribute interpolation.
+    #[arg(long, value_enum)]
+    pub interpolation: Option<InterpolationArg>,
+    /// Draw back faces too (lit with reversed normals).
+    #[arg(long)]
+    pub no_cull: bool,
+    /// Include the specular term in Gouraud's vertex lighting.
+    #[arg(long)]
+    pub gouraud_specular: bool,
+    /// Background colour, R,G,B in 0–255.
+    #[arg(long, value_parser = parse_rgb)]
+    pub background: Option<[i64; 3]>,
+}
+
+/// `--shading`
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum ShadingArg {
+    /// One lighting evaluation per polygon.
+    Flat,
+    /// Lighting per vertex, colours interpolated.
+    Gouraud,
+    /// Normals interpolated, lighting per pixel.
+    Phong,
+}
+
+/// `--normals`
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum NormalsArg {
+    /// The file's normals when present, else uniform.
+    Auto,
+    /// The file's normals.
+    File,
+    /// Unweighted average of adjacent face normals.
+    Uniform,
+    /// Area-weighted.
+    Area,
+    /// Angle-weighted.
+    Angle,
+}
+
+/// `--interpolation`
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum InterpolationArg {
+    /// Perspective-correct.
+    Perspective,
+    /// Linear in screen space, as in the textbook.
+    Screen,
+}
+
+fn parse_numbers<const N: usize, T: std::str::FromStr>(s: &str, what: &str) -> Result<[T; N], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != N {
+        return Err(format!("expected {N} comma-separated {what}, got {s:?}"));
+    }
+    let mut out = Vec::with_capacity(N);
+    for p in parts {
+        out.push(p.parse::<T>().map_err(|_| format!("{p:?} is not a valid {what}"))?);
+    }
+    out.try_into().map_err(|_| unreachable!("length checked above"))
+}
+
+fn parse_rgb(s: &str) -> Result<[i64; 3], String> {
+    let c: [i64; 3] = parse_numbers(s, "integers")?;
+    if c.iter().any(|v| !(0..=255).contains(v)) {
+        return Err(format!("each channel must be 0..=255, got {s:?}"));
+    }
+    Ok(c)
+}
+
+fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
+    let v: [f32; 3] = parse_numbers(s, "numbers")?;
+    if v.iter().any(|c| !c.is_finite()) {
+        return Err(format!("coordinates must be finite, got {s:?}"));
+    }
+    Ok(v)
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("expected WIDTHxHEIGHT, got {s:?}"))?;
+    let w: u32 = w.trim().parse().map_err(|_| format!("{w:?} is not a width"))?;
+    let h: u32 = h.trim().parse().map_err(|_| format!("{h:?} is not a height"))?;
+    Ok((w, h))
+}
+
+impl SceneOverrides {
+    /// Writes every flag that was given into `scene`.
+    pub fn apply(&self, scene: &mut SceneFile) {
+        if let Some(m) = &self.model {
+            scene.model.source = Some(m.clone());
+            // A different model has different (or no) details.
+            scene.model.detail = None;
+        }
+        if self.detail.is_some() {
+            scene.model.detail = self.detail;
+        }
+        if let Some(n) = self.normals {
+            scene.model.normals = Some(match n {
+                NormalsArg::Auto => NormalsChoice::Auto,
+                NormalsArg::File => NormalsChoice::File,
+                NormalsArg::Uniform => NormalsChoice::Uniform,
+                NormalsArg::Area => NormalsChoice::Area,
+                NormalsArg::Angle => NormalsChoice::Angle,
+            });
+        }
+        if self.crease_angle.is_some() {
+            scene.model.crease_angle = self.crease_angle;
+        }
+        if let Some((w, h)) = self.size {
+            scene.render.width = Some(w);
+            scene.render.height = Some(h);
+        }
+        if self.ambient.is_some() {
+            scene.ambient.color = self.ambient;
+        }
+        if self.ambient_intensity.is_some() {
+            scene.ambient.intensity = self.ambient_intensity;
+        }
+        if self.light_pos.is_some() || self.light_color.is_some() || self.light_intensity.is_some() {
+            let lights = scene.lights.get_or_insert_with(Vec::new);
+            if lights.is_empty() {
+                lights.push(LightSection {
+                    kind: LightKindName::Point,
+                    position: Some([2.0, 2.0, 3.0]),
+                    direction: None,
+                    color: None,
+                    intensity: None,
+                });
+            }
+            let light = &mut lights[0];
+            if let Some(p) = self.light_pos {
+                light.kind = LightKindName::Point;
+                light.position = Some(p);
+                light.direction = None;
+            }
+            if self.light_color.is_some() {
+                light.color = self.light_color;
+            }
+            if self.light_intensity.is_some() {
+                light.intensity = self.light_intensity;
+            }
+        }
+        if self.ka.is_some() {
+            scene.material.ka = self.ka;
+        }
+        if self.kd.is_some() {
+            scene.material.kd = self.kd;
+        }
+        if self.ks.is_some() {
+            scene.material.ks = self.ks;
+        }
+        if self.shininess.is_some() {
+            scene.material.shininess = self.shininess;
+        }
+        if self.yaw.is_some() {
+            scene.render.yaw = self.yaw;
+        }
+        if self.pitch.is_some() {
+            scene.render.pitch = self.pitch;
+        }
+        if let Some(i) = self.interpolation {
+            scene.render.interpolation = Some(match i {
+                InterpolationArg::Perspective => InterpolationName::Perspective,
+                InterpolationArg::Screen => InterpolationName::Screen,
+            });
+        }
+        if self.no_cull {
+            scene.render.cull_backfaces = Some(false);
+        }
+        if self.gouraud_specular {
+            scene.render.gouraud_specular = Some(true);
+        }
+        if self.background.is_some() {
+            scene.render.background = self.background;
+        }
+    }
+}
+
+impl From<ShadingArg> for ShadingName {
+    fn from(s: ShadingArg) -> ShadingName {
+        match s {
+            ShadingArg::Flat => ShadingName::Flat,
+            ShadingArg::Gouraud => ShadingName::Gouraud,
+            ShadingArg::Phong => ShadingName::Phong,
+        }
+    }
+}

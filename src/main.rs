@@ -1,0 +1,187 @@
+//! The `shadelab` command: render a scene with one shading method, or all
+//! three side by side.
+//!
+//! Exit codes: 0 on success; 2 for invalid input (arguments, scene file,
+//! model file, out-of-range values); 1 when the output cannot be written.
+
+mod cli;
+mod label;
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::Context;
+use clap::Parser;
+use shadelab_core::{render, Image, RenderOptions, RenderStats, Rgb8, Scene, Shading, BUILTIN_MODELS};
+use shadelab_io::{model_path, write_png, SceneFile};
+
+use cli::{Cli, Command, SceneOverrides};
+
+/// A failure and the exit code it maps to.
+struct Failure {
+    code: u8,
+    error: anyhow::Error,
+}
+
+fn input_error(error: impl Into<anyhow::Error>) -> Failure {
+    Failure { code: 2, error: error.into() }
+}
+
+fn output_error(error: impl Into<anyhow::Error>) -> Failure {
+    Failure { code: 1, error: error.into() }
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() { ExitCode::from(2) } else { ExitCode::SUCCESS };
+        }
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            if is_broken_pipe(&f.error) {
+                return ExitCode::SUCCESS;
+            }
+            eprintln!("error: {:#}", f.error);
+            ExitCode::from(f.code)
+        }
+    }
+}
+
+fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain()
+        .filter_map(|c| c.downcast_ref::<std::io::Error>())
+        .any(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+}
+
+fn run(cli: Cli) -> Result<(), Failure> {
+    match cli.command {
+        Command::Render(args) => {
+            let mut file = read_scene(args.scene.as_deref())?;
+            args.overrides.apply(&mut file);
+            if let Some(s) = args.shading {
+                file.render.shading = Some(s.into());
+            }
+            let (scene, options, inputs) = resolve(&file, args.scene.as_deref())?;
+            check_output(&args.output, &inputs)?;
+            let (image, stats, ms) = timed_render(&scene, &options)?;
+            write_png(&args.output, &image)
+                .with_context(|| format!("cannot write {}", args.output.display()))
+                .map_err(output_error)?;
+            report(options.shading, &options, &stats, ms);
+            Ok(())
+        }
+        Command::Compare(args) => compare(args.scene.as_deref(), &args.overrides, &args.output),
+        Command::Models => {
+            let mut out = std::io::stdout().lock();
+            let mut list = || -> std::io::Result<()> {
+                writeln!(out, "{:<10} {:>7}  {:<48} detail", "name", "default", "description")?;
+                for m in BUILTIN_MODELS {
+                    writeln!(
+                        out,
+                        "{:<10} {:>7}  {:<48} {} ({}..={})",
+                        m.name, m.default_detail, m.description, m.detail_meaning, m.detail_range.0, m.detail_range.1
+                    )?;
+                }
+                Ok(())
+            };
+            list().map_err(output_error)
+        }
+    }
+}
+
+fn read_scene(path: Option<&Path>) -> Result<SceneFile, Failure> {
+    match path {
+        Some(p) => SceneFile::load(p).map_err(input_error),
+        None => Ok(SceneFile::default()),
+    }
+}
+
+/// The scene and options, and the files they were read from.
+fn resolve(file: &SceneFile, scene_path: Option<&Path>) -> Result<(Scene, RenderOptions, Vec<PathBuf>), Failure> {
+    let base_dir = scene_path
+        .and_then(Path::parent)
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("."));
+    let (scene, options) = file.resolve(&base_dir).map_err(input_error)?;
+    let mut inputs: Vec<PathBuf> = scene_path.map(Path::to_path_buf).into_iter().collect();
+    if let Some(source) = &file.model.source {
+        inputs.push(model_path(source, &base_dir));
+    }
+    Ok((scene, options, inputs))
+}
+
+/// Refuses to write the image over one of the command's own inputs.
+fn check_output(output: &Path, inputs: &[PathBuf]) -> Result<(), Failure> {
+    let Ok(out) = output.canonicalize() else { return Ok(()) };
+    for input in inputs {
+        if input.canonicalize().is_ok_and(|i| i == out) {
+            return Err(input_error(anyhow::anyhow!(
+                "refusing to write the image over its own input {}",
+                input.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn timed_render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderStats, f64), Failure> {
+    let start = Instant::now();
+    let (image, stats) = render(scene, options).map_err(input_error)?;
+    Ok((image, stats, start.elapsed().as_secs_f64() * 1e3))
+}
+
+fn report(shading: Shading, options: &RenderOptions, stats: &RenderStats, ms: f64) {
+    eprintln!(
+        "{:<8} {}x{}  {:>8.2} ms  {} polygons rasterized ({} culled)  {} pixels shaded  {} lighting evaluations",
+        shading.title(),
+        options.width,
+        options.height,
+        ms,
+        stats.rasterized,
+        stats.culled,
+        stats.fragments_shaded,
+        stats.lighting_evaluations
+    );
+}
+
+/// Height of the label band above each panel.
+const LABEL_BAND: u32 = 28;
+/// Width of the gap between panels.
+const GAP: u32 = 4;
+
+fn compare(scene_path: Option<&Path>, overrides: &SceneOverrides, output: &Path) -> Result<(), Failure> {
+    let mut file = read_scene(scene_path)?;
+    // Panels default to a square that three fit side by side on a laptop screen.
+    if file.render.width.is_none() && file.render.height.is_none() {
+        file.render.width = Some(480);
+        file.render.height = Some(480);
+    }
+    overrides.apply(&mut file);
+    let (scene, options, inputs) = resolve(&file, scene_path)?;
+    check_output(output, &inputs)?;
+
+    let (w, h) = (options.width, options.height);
+    let total_width = 3 * w + 2 * GAP;
+    let band = Rgb8::new(32, 32, 40);
+    let mut sheet = Image::filled(total_width, h + LABEL_BAND, band);
+    for (k, shading) in Shading::ALL.into_iter().enumerate() {
+        let options = RenderOptions { shading, ..options };
+        let (panel, stats, ms) = timed_render(&scene, &options)?;
+        let x = k as u32 * (w + GAP);
+        sheet.blit(&panel, x, LABEL_BAND);
+        let title = shading.title();
+        let scale = if label::text_width(title, 2) + 8 <= w { 2 } else { 1 };
+        let tx = x + w.saturating_sub(label::text_width(title, scale)) / 2;
+        label::draw_text(&mut sheet, title, tx, (LABEL_BAND - 8 * scale) / 2, scale, Rgb8::new(240, 240, 240));
+        report(shading, &options, &stats, ms);
+    }
+    write_png(output, &sheet)
+        .with_context(|| format!("cannot write {}", output.display()))
+        .map_err(output_error)
+}
