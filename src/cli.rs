@@ -156,16 +156,23 @@ pub enum InterpolationArg {
     Screen,
 }
 
-fn parse_numbers<const N: usize, T: std::str::FromStr>(s: &str, what: &str) -> Result<[T; N], String> {
+fn parse_numbers<const N: usize, T: std::str::FromStr>(
+    s: &str,
+    what: &str,
+) -> Result<[T; N], String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     if parts.len() != N {
         return Err(format!("expected {N} comma-separated {what}, got {s:?}"));
     }
     let mut out = Vec::with_capacity(N);
     for p in parts {
-        out.push(p.parse::<T>().map_err(|_| format!("{p:?} is not a valid {what}"))?);
+        out.push(
+            p.parse::<T>()
+                .map_err(|_| format!("{p:?} is not a valid {what}"))?,
+        );
     }
-    out.try_into().map_err(|_| unreachable!("length checked above"))
+    out.try_into()
+        .map_err(|_| unreachable!("length checked above"))
 }
 
 fn parse_rgb(s: &str) -> Result<[i64; 3], String> {
@@ -185,9 +192,17 @@ fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("expected WIDTHxHEIGHT, got {s:?}"))?;
-    let w: u32 = w.trim().parse().map_err(|_| format!("{w:?} is not a width"))?;
-    let h: u32 = h.trim().parse().map_err(|_| format!("{h:?} is not a height"))?;
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {s:?}"))?;
+    let w: u32 = w
+        .trim()
+        .parse()
+        .map_err(|_| format!("{w:?} is not a width"))?;
+    let h: u32 = h
+        .trim()
+        .parse()
+        .map_err(|_| format!("{h:?} is not a height"))?;
     Ok((w, h))
 }
 
@@ -224,7 +239,8 @@ impl SceneOverrides {
         if self.ambient_intensity.is_some() {
             scene.ambient.intensity = self.ambient_intensity;
         }
-        if self.light_pos.is_some() || self.light_color.is_some() || self.light_intensity.is_some() {
+        if self.light_pos.is_some() || self.light_color.is_some() || self.light_intensity.is_some()
+        {
             let lights = scene.lights.get_or_insert_with(Vec::new);
             if lights.is_empty() {
                 lights.push(LightSection {

@@ -12,7 +12,11 @@ pub fn text_width(text: &str, scale: u32) -> u32 {
 /// `scale` × `scale` square; characters outside ASCII are drawn as `?`.
 pub fn draw_text(image: &mut Image, text: &str, x: u32, y: u32, scale: u32, color: Rgb8) {
     for (k, ch) in text.chars().enumerate() {
-        let code = if ch.is_ascii() { ch as usize } else { '?' as usize };
+        let code = if ch.is_ascii() {
+            ch as usize
+        } else {
+            '?' as usize
+        };
         let glyph = BASIC_LEGACY[code];
         let left = x + k as u32 * 8 * scale;
         for (row, bits) in glyph.iter().enumerate() {
@@ -20,7 +24,11 @@ pub fn draw_text(image: &mut Image, text: &str, x: u32, y: u32, scale: u32, colo
                 if bits & (1 << col) != 0 {
                     for dy in 0..scale {
                         for dx in 0..scale {
-                            image.set_pixel(left + col * scale + dx, y + row as u32 * scale + dy, color);
+                            image.set_pixel(
+                                left + col * scale + dx,
+                                y + row as u32 * scale + dy,
+                                color,
+                            );
                         }
                     }
                 }

@@ -14,7 +14,9 @@ use std::time::Instant;
 
 use anyhow::Context;
 use clap::Parser;
-use shadelab_core::{render, Image, RenderOptions, RenderStats, Rgb8, Scene, Shading, BUILTIN_MODELS};
+use shadelab_core::{
+    render, Image, RenderOptions, RenderStats, Rgb8, Scene, Shading, BUILTIN_MODELS,
+};
 use shadelab_io::{model_path, write_png, SceneFile};
 
 use cli::{Cli, Command, SceneOverrides};
@@ -26,11 +28,17 @@ struct Failure {
 }
 
 fn input_error(error: impl Into<anyhow::Error>) -> Failure {
-    Failure { code: 2, error: error.into() }
+    Failure {
+        code: 2,
+        error: error.into(),
+    }
 }
 
 fn output_error(error: impl Into<anyhow::Error>) -> Failure {
-    Failure { code: 1, error: error.into() }
+    Failure {
+        code: 1,
+        error: error.into(),
+    }
 }
 
 fn main() -> ExitCode {
@@ -38,7 +46,11 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => {
             let _ = e.print();
-            return if e.use_stderr() { ExitCode::from(2) } else { ExitCode::SUCCESS };
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
         }
     };
     match run(cli) {
@@ -80,12 +92,21 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Models => {
             let mut out = std::io::stdout().lock();
             let mut list = || -> std::io::Result<()> {
-                writeln!(out, "{:<10} {:>7}  {:<48} detail", "name", "default", "description")?;
+                writeln!(
+                    out,
+                    "{:<10} {:>7}  {:<48} detail",
+                    "name", "default", "description"
+                )?;
                 for m in BUILTIN_MODELS {
                     writeln!(
                         out,
                         "{:<10} {:>7}  {:<48} {} ({}..={})",
-                        m.name, m.default_detail, m.description, m.detail_meaning, m.detail_range.0, m.detail_range.1
+                        m.name,
+                        m.default_detail,
+                        m.description,
+                        m.detail_meaning,
+                        m.detail_range.0,
+                        m.detail_range.1
                     )?;
                 }
                 Ok(())
@@ -103,7 +124,10 @@ fn read_scene(path: Option<&Path>) -> Result<SceneFile, Failure> {
 }
 
 /// The scene and options, and the files they were read from.
-fn resolve(file: &SceneFile, scene_path: Option<&Path>) -> Result<(Scene, RenderOptions, Vec<PathBuf>), Failure> {
+fn resolve(
+    file: &SceneFile,
+    scene_path: Option<&Path>,
+) -> Result<(Scene, RenderOptions, Vec<PathBuf>), Failure> {
     let base_dir = scene_path
         .and_then(Path::parent)
         .map(Path::to_path_buf)
@@ -118,7 +142,9 @@ fn resolve(file: &SceneFile, scene_path: Option<&Path>) -> Result<(Scene, Render
 
 /// Refuses to write the image over one of the command's own inputs.
 fn check_output(output: &Path, inputs: &[PathBuf]) -> Result<(), Failure> {
-    let Ok(out) = output.canonicalize() else { return Ok(()) };
+    let Ok(out) = output.canonicalize() else {
+        return Ok(());
+    };
     for input in inputs {
         if input.canonicalize().is_ok_and(|i| i == out) {
             return Err(input_error(anyhow::anyhow!(
@@ -130,7 +156,10 @@ fn check_output(output: &Path, inputs: &[PathBuf]) -> Result<(), Failure> {
     Ok(())
 }
 
-fn timed_render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderStats, f64), Failure> {
+fn timed_render(
+    scene: &Scene,
+    options: &RenderOptions,
+) -> Result<(Image, RenderStats, f64), Failure> {
     let start = Instant::now();
     let (image, stats) = render(scene, options).map_err(input_error)?;
     Ok((image, stats, start.elapsed().as_secs_f64() * 1e3))
@@ -155,7 +184,11 @@ const LABEL_BAND: u32 = 28;
 /// Width of the gap between panels.
 const GAP: u32 = 4;
 
-fn compare(scene_path: Option<&Path>, overrides: &SceneOverrides, output: &Path) -> Result<(), Failure> {
+fn compare(
+    scene_path: Option<&Path>,
+    overrides: &SceneOverrides,
+    output: &Path,
+) -> Result<(), Failure> {
     let mut file = read_scene(scene_path)?;
     // Panels default to a square that three fit side by side on a laptop screen.
     if file.render.width.is_none() && file.render.height.is_none() {
@@ -176,9 +209,20 @@ fn compare(scene_path: Option<&Path>, overrides: &SceneOverrides, output: &Path)
         let x = k as u32 * (w + GAP);
         sheet.blit(&panel, x, LABEL_BAND);
         let title = shading.title();
-        let scale = if label::text_width(title, 2) + 8 <= w { 2 } else { 1 };
+        let scale = if label::text_width(title, 2) + 8 <= w {
+            2
+        } else {
+            1
+        };
         let tx = x + w.saturating_sub(label::text_width(title, scale)) / 2;
-        label::draw_text(&mut sheet, title, tx, (LABEL_BAND - 8 * scale) / 2, scale, Rgb8::new(240, 240, 240));
+        label::draw_text(
+            &mut sheet,
+            title,
+            tx,
+            (LABEL_BAND - 8 * scale) / 2,
+            scale,
+            Rgb8::new(240, 240, 240),
+        );
         report(shading, &options, &stats, ms);
     }
     write_png(output, &sheet)

@@ -20,7 +20,9 @@ pub enum CameraError {
     #[error("camera.fov_y must be strictly between 0 and 180 degrees, got {0}")]
     FieldOfView(f32),
     /// The clipping planes are not 0 < near < far.
-    #[error("camera.near and camera.far must satisfy 0 < near < far, got near = {near}, far = {far}")]
+    #[error(
+        "camera.near and camera.far must satisfy 0 < near < far, got near = {near}, far = {far}"
+    )]
     DepthRange {
         /// Near plane distance.
         near: f32,

@@ -41,7 +41,10 @@ impl Image {
     /// # Panics
     /// If (`x`, `y`) is outside the image.
     pub fn pixel(&self, x: u32, y: u32) -> Rgb8 {
-        assert!(x < self.width && y < self.height, "pixel ({x}, {y}) outside the image");
+        assert!(
+            x < self.width && y < self.height,
+            "pixel ({x}, {y}) outside the image"
+        );
         self.pixels[(y * self.width + x) as usize]
     }
 

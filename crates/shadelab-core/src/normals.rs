@@ -56,7 +56,11 @@ pub fn face_normals(mesh: &Mesh) -> Vec<Option<Vec3>> {
     (0..mesh.polygon_count())
         .map(|f| {
             points.clear();
-            points.extend(mesh.polygon(f).iter().map(|&i| mesh.positions()[i as usize]));
+            points.extend(
+                mesh.polygon(f)
+                    .iter()
+                    .map(|&i| mesh.positions()[i as usize]),
+            );
             face_normal(&points)
         })
         .collect()
@@ -82,7 +86,11 @@ pub fn vertex_normals(
         let Some(normal) = *normal else { continue };
         let range = mesh.corner_range(f);
         points.clear();
-        points.extend(mesh.corners()[range.clone()].iter().map(|&i| positions[i as usize]));
+        points.extend(
+            mesh.corners()[range.clone()]
+                .iter()
+                .map(|&i| positions[i as usize]),
+        );
         let n = points.len();
         for (k, c) in range.enumerate() {
             let weight = match weighting {

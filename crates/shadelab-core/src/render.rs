@@ -203,12 +203,24 @@ pub fn coverage(scene: &Scene, options: &RenderOptions) -> Result<Vec<u32>, Rend
 
 fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
     let (w, h) = (options.width, options.height);
-    if w == 0 || h == 0 || w > MAX_IMAGE_SIDE || h > MAX_IMAGE_SIDE || u64::from(w) * u64::from(h) > MAX_IMAGE_PIXELS {
-        return Err(RenderError::ImageSize { width: w, height: h });
+    if w == 0
+        || h == 0
+        || w > MAX_IMAGE_SIDE
+        || h > MAX_IMAGE_SIDE
+        || u64::from(w) * u64::from(h) > MAX_IMAGE_PIXELS
+    {
+        return Err(RenderError::ImageSize {
+            width: w,
+            height: h,
+        });
     }
     scene.camera.validate()?;
     if scene.normals.corner.len() != scene.mesh.corners().len()
-        || scene.normals.corner.iter().any(|&i| i as usize >= scene.normals.normals.len())
+        || scene
+            .normals
+            .corner
+            .iter()
+            .any(|&i| i as usize >= scene.normals.normals.len())
     {
         return Err(RenderError::NormalsMismatch {
             normals: scene.normals.corner.len(),
@@ -351,12 +363,15 @@ impl Method<3> for GouraudMethod<'_> {
         let scene = self.scene;
         let terms = self.terms;
         let normal_index = scene.normals.corner[corner];
-        *self.lit.entry((vertex, normal_index, back)).or_insert_with(|| {
-            let n = scene.corner_normal(corner);
-            let n = if back { -n } else { n };
-            let p = scene.mesh.positions()[vertex as usize];
-            scene.lighting.eval(p, n, terms).clamped().to_array()
-        })
+        *self
+            .lit
+            .entry((vertex, normal_index, back))
+            .or_insert_with(|| {
+                let n = scene.corner_normal(corner);
+                let n = if back { -n } else { n };
+                let p = scene.mesh.positions()[vertex as usize];
+                scene.lighting.eval(p, n, terms).clamped().to_array()
+            })
     }
 
     fn begin_polygon(&mut self, _: usize, _: std::ops::Range<usize>, _: bool) {}
@@ -423,7 +438,11 @@ pub(crate) fn guard_band(width: u32, height: u32) -> f32 {
 }
 
 /// The perspective divide and viewport transform, then snapping.
-pub(crate) fn to_window<const N: usize>(v: &ClipVertex<N>, width: u32, height: u32) -> ScreenVertex<N> {
+pub(crate) fn to_window<const N: usize>(
+    v: &ClipVertex<N>,
+    width: u32,
+    height: u32,
+) -> ScreenVertex<N> {
     let inv_w = 1.0 / f64::from(v.clip.w);
     let x = (f64::from(v.clip.x) * inv_w + 1.0) * 0.5 * f64::from(width);
     let y = (1.0 - f64::from(v.clip.y) * inv_w) * 0.5 * f64::from(height);
@@ -453,16 +472,32 @@ fn draw(scene: &Scene, options: &RenderOptions, target: &mut impl Target) -> Ren
     };
     match options.shading {
         Shading::Flat => {
-            let mut m = FlatMethod { scene: &refs, color: Rgb8::default(), evaluations: 0 };
+            let mut m = FlatMethod {
+                scene: &refs,
+                color: Rgb8::default(),
+                evaluations: 0,
+            };
             draw_with(&refs, options, view_projection, &mut m, target)
         }
         Shading::Gouraud => {
-            let terms = if options.gouraud_specular { Terms::Full } else { Terms::AmbientDiffuse };
-            let mut m = GouraudMethod { scene: &refs, terms, lit: HashMap::new() };
+            let terms = if options.gouraud_specular {
+                Terms::Full
+            } else {
+                Terms::AmbientDiffuse
+            };
+            let mut m = GouraudMethod {
+                scene: &refs,
+                terms,
+                lit: HashMap::new(),
+            };
             draw_with(&refs, options, view_projection, &mut m, target)
         }
         Shading::Phong => {
-            let mut m = PhongMethod { scene: &refs, flip: 1.0, evaluations: 0 };
+            let mut m = PhongMethod {
+                scene: &refs,
+                flip: 1.0,
+                evaluations: 0,
+            };
             draw_with(&refs, options, view_projection, &mut m, target)
         }
     }
@@ -483,24 +518,28 @@ fn draw_with<const N: usize, M: Method<N>, T: Target>(
         .map(|p| view_projection * p.extend(1.0))
         .collect();
     let guard = guard_band(width, height);
-    let mut stats = RenderStats { polygons: mesh.polygon_count() as u64, ..RenderStats::default() };
+    let mut stats = RenderStats {
+        polygons: mesh.polygon_count() as u64,
+        ..RenderStats::default()
+    };
     let (mut input, mut clipped, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
     let mut window: Vec<ScreenVertex<N>> = Vec::new();
     let mut shaded = 0;
 
-    let mut project = |method: &mut M, face: usize, back: bool, window: &mut Vec<ScreenVertex<N>>| {
-        input.clear();
-        for c in mesh.corner_range(face) {
-            let vertex = mesh.corners()[c];
-            input.push(ClipVertex {
-                clip: clip_positions[vertex as usize],
-                attrs: method.corner(c, vertex, back),
-            });
-        }
-        clip_polygon(&input, guard, &mut clipped, &mut scratch);
-        window.clear();
-        window.extend(clipped.iter().map(|v| to_window(v, width, height)));
-    };
+    let mut project =
+        |method: &mut M, face: usize, back: bool, window: &mut Vec<ScreenVertex<N>>| {
+            input.clear();
+            for c in mesh.corner_range(face) {
+                let vertex = mesh.corners()[c];
+                input.push(ClipVertex {
+                    clip: clip_positions[vertex as usize],
+                    attrs: method.corner(c, vertex, back),
+                });
+            }
+            clip_polygon(&input, guard, &mut clipped, &mut scratch);
+            window.clear();
+            window.extend(clipped.iter().map(|v| to_window(v, width, height)));
+        };
 
     for face in 0..mesh.polygon_count() {
         if scene.faces[face].is_none() {
@@ -524,7 +563,11 @@ fn draw_with<const N: usize, M: Method<N>, T: Target>(
         }
         stats.rasterized += 1;
         method.begin_polygon(face, mesh.corner_range(face), back);
-        let mut sink = ShadingSink { method: &mut *method, target: &mut *target, shaded: 0 };
+        let mut sink = ShadingSink {
+            method: &mut *method,
+            target: &mut *target,
+            shaded: 0,
+        };
         rasterize_polygon(&window, width, height, options.interpolation, &mut sink);
         shaded += sink.shaded;
     }

@@ -25,15 +25,28 @@ pub const MAX_OBJ_BYTES: u64 = 1 << 30;
 pub fn load_obj(path: &Path) -> Result<Mesh, LoadError> {
     let name = path.display().to_string();
     let size = std::fs::metadata(path)
-        .map_err(|source| LoadError::Io { path: name.clone(), source })?
+        .map_err(|source| LoadError::Io {
+            path: name.clone(),
+            source,
+        })?
         .len();
     if size > MAX_OBJ_BYTES {
-        return Err(LoadError::TooLarge { path: name, bytes: size, limit: MAX_OBJ_BYTES });
+        return Err(LoadError::TooLarge {
+            path: name,
+            bytes: size,
+            limit: MAX_OBJ_BYTES,
+        });
     }
-    let bytes = std::fs::read(path).map_err(|source| LoadError::Io { path: name.clone(), source })?;
+    let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
+        path: name.clone(),
+        source,
+    })?;
     let text = String::from_utf8(bytes).map_err(|e| LoadError::Invalid {
         path: name.clone(),
-        message: format!("not UTF-8 text (invalid byte at offset {})", e.utf8_error().valid_up_to()),
+        message: format!(
+            "not UTF-8 text (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        ),
     })?;
     parse_obj(&text, &name)
 }
@@ -53,7 +66,10 @@ pub fn parse_obj(text: &str, name: &str) -> Result<Mesh, LoadError> {
     let (models, _materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| {
         Err(tobj::LoadError::MaterialParseError)
     })
-    .map_err(|e| LoadError::Invalid { path: name.to_owned(), message: e.to_string() })?;
+    .map_err(|e| LoadError::Invalid {
+        path: name.to_owned(),
+        message: e.to_string(),
+    })?;
 
     let mut positions = Vec::new();
     let mut polygons: Vec<Vec<u32>> = Vec::new();
@@ -63,8 +79,16 @@ pub fn parse_obj(text: &str, name: &str) -> Result<Mesh, LoadError> {
         let m = &model.mesh;
         let base = positions.len() as u32;
         let normal_base = normals.len() as u32;
-        positions.extend(m.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])));
-        normals.extend(m.normals.chunks_exact(3).map(|n| Vec3::new(n[0], n[1], n[2])));
+        positions.extend(
+            m.positions
+                .chunks_exact(3)
+                .map(|p| Vec3::new(p[0], p[1], p[2])),
+        );
+        normals.extend(
+            m.normals
+                .chunks_exact(3)
+                .map(|n| Vec3::new(n[0], n[1], n[2])),
+        );
         let arities: Vec<usize> = if m.face_arities.is_empty() {
             vec![3; m.indices.len() / 3]
         } else {
@@ -72,17 +96,33 @@ pub fn parse_obj(text: &str, name: &str) -> Result<Mesh, LoadError> {
         };
         let mut start = 0;
         for arity in arities {
-            polygons.push(m.indices[start..start + arity].iter().map(|&i| base + i).collect());
+            polygons.push(
+                m.indices[start..start + arity]
+                    .iter()
+                    .map(|&i| base + i)
+                    .collect(),
+            );
             if m.normal_indices.len() == m.indices.len() {
-                corner_normals.extend(m.normal_indices[start..start + arity].iter().map(|&i| normal_base + i));
+                corner_normals.extend(
+                    m.normal_indices[start..start + arity]
+                        .iter()
+                        .map(|&i| normal_base + i),
+                );
             }
             start += arity;
         }
     }
-    let invalid = |e: shadelab_core::MeshError| LoadError::Invalid { path: name.to_owned(), message: e.to_string() };
+    let invalid = |e: shadelab_core::MeshError| LoadError::Invalid {
+        path: name.to_owned(),
+        message: e.to_string(),
+    };
     let mesh = Mesh::from_polygons(positions, polygons).map_err(invalid)?;
     if summary.every_corner_has_normal && corner_normals.len() == mesh.corners().len() {
-        mesh.with_file_normals(CornerNormals { normals, corner: corner_normals }).map_err(invalid)
+        mesh.with_file_normals(CornerNormals {
+            normals,
+            corner: corner_normals,
+        })
+        .map_err(invalid)
     } else {
         Ok(mesh)
     }
@@ -114,18 +154,29 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
         }
         logical.push_str(raw);
         let line = std::mem::take(&mut logical);
-        let error = |message: String| LoadError::Syntax { path: name.to_owned(), line: first_line, message };
+        let error = |message: String| LoadError::Syntax {
+            path: name.to_owned(),
+            line: first_line,
+            message,
+        };
         let statement = line.split('#').next().unwrap_or("");
         let mut words = statement.split_whitespace();
-        let Some(keyword) = words.next() else { continue };
+        let Some(keyword) = words.next() else {
+            continue;
+        };
         let args: Vec<&str> = words.collect();
         match keyword {
             "v" | "vn" => {
                 if args.len() < 3 {
-                    return Err(error(format!("`{keyword}` needs 3 coordinates, found {}", args.len())));
+                    return Err(error(format!(
+                        "`{keyword}` needs 3 coordinates, found {}",
+                        args.len()
+                    )));
                 }
                 for a in &args[..3] {
-                    let value: f32 = a.parse().map_err(|_| error(format!("`{a}` is not a number")))?;
+                    let value: f32 = a
+                        .parse()
+                        .map_err(|_| error(format!("`{a}` is not a number")))?;
                     if !value.is_finite() {
                         return Err(error(format!("coordinate `{a}` is not a finite number")));
                     }
@@ -139,19 +190,30 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
             "vt" => texcoords += 1,
             "f" => {
                 if args.len() < 3 {
-                    return Err(error(format!("a face needs at least 3 vertices, found {}", args.len())));
+                    return Err(error(format!(
+                        "a face needs at least 3 vertices, found {}",
+                        args.len()
+                    )));
                 }
                 faces += 1;
                 corners += args.len();
                 if corners > Mesh::MAX_CORNERS {
-                    return Err(error(format!("more than {} face corners", Mesh::MAX_CORNERS)));
+                    return Err(error(format!(
+                        "more than {} face corners",
+                        Mesh::MAX_CORNERS
+                    )));
                 }
                 for corner in &args {
                     let mut parts = corner.split('/');
-                    let mut index = |what: &str, count: i64, required: bool| -> Result<bool, LoadError> {
+                    let mut index = |what: &str,
+                                     count: i64,
+                                     required: bool|
+                     -> Result<bool, LoadError> {
                         match parts.next() {
                             Some(s) if !s.is_empty() => {
-                                let i: i64 = s.parse().map_err(|_| error(format!("`{corner}`: `{s}` is not an index")))?;
+                                let i: i64 = s.parse().map_err(|_| {
+                                    error(format!("`{corner}`: `{s}` is not an index"))
+                                })?;
                                 let resolved = if i < 0 { count + i } else { i - 1 };
                                 if i == 0 || resolved < 0 || resolved >= count {
                                     return Err(error(format!(
@@ -160,7 +222,9 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
                                 }
                                 Ok(true)
                             }
-                            _ if required => Err(error(format!("`{corner}`: missing vertex index"))),
+                            _ if required => {
+                                Err(error(format!("`{corner}`: missing vertex index")))
+                            }
                             _ => Ok(false),
                         }
                     };
@@ -177,7 +241,12 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
         }
     }
     if faces == 0 {
-        return Err(LoadError::Invalid { path: name.to_owned(), message: "no faces (a mesh needs at least one `f` line)".into() });
+        return Err(LoadError::Invalid {
+            path: name.to_owned(),
+            message: "no faces (a mesh needs at least one `f` line)".into(),
+        });
     }
-    Ok(Summary { every_corner_has_normal })
+    Ok(Summary {
+        every_corner_has_normal,
+    })
 }

@@ -14,11 +14,21 @@ use shadelab_core::{Image, Rgb8};
 /// # Errors
 /// The I/O or encoding error.
 pub fn write_png(path: &Path, image: &Image) -> std::io::Result<()> {
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     let file_name = path.file_name().ok_or_else(|| {
-        std::io::Error::new(std::io::ErrorKind::InvalidInput, "the output path names no file")
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "the output path names no file",
+        )
     })?;
-    let temp = dir.join(format!(".{}.{}.tmp", file_name.to_string_lossy(), std::process::id()));
+    let temp = dir.join(format!(
+        ".{}.{}.tmp",
+        file_name.to_string_lossy(),
+        std::process::id()
+    ));
     let result = (|| {
         let file = std::fs::File::create(&temp)?;
         let mut writer = BufWriter::new(file);
@@ -42,7 +52,9 @@ pub fn encode_png(out: &mut impl Write, image: &Image) -> std::io::Result<()> {
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
     let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
-    writer.write_image_data(&image.to_rgb_bytes()).map_err(std::io::Error::other)?;
+    writer
+        .write_image_data(&image.to_rgb_bytes())
+        .map_err(std::io::Error::other)?;
     writer.finish().map_err(std::io::Error::other)
 }
 
@@ -59,7 +71,9 @@ pub fn read_png(path: &Path) -> std::io::Result<Image> {
         (png::ColorType::Rgb, png::BitDepth::Eight) => 3,
         (png::ColorType::Rgba, png::BitDepth::Eight) => 4,
         other => {
-            return Err(std::io::Error::other(format!("unsupported PNG pixel format {other:?}")));
+            return Err(std::io::Error::other(format!(
+                "unsupported PNG pixel format {other:?}"
+            )));
         }
     };
     let mut image = Image::filled(info.width, info.height, Rgb8::default());

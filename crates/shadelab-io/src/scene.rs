@@ -246,7 +246,10 @@ pub enum SceneError {
 }
 
 fn value_error(key: impl Into<String>, message: impl Into<String>) -> SceneError {
-    SceneError::Value { key: key.into(), message: message.into() }
+    SceneError::Value {
+        key: key.into(),
+        message: message.into(),
+    }
 }
 
 impl SceneFile {
@@ -256,7 +259,10 @@ impl SceneFile {
     /// [`SceneError::Io`] or [`SceneError::Parse`] (with line and column).
     pub fn load(path: &Path) -> Result<SceneFile, SceneError> {
         let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { path: name.clone(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: name.clone(),
+            source,
+        })?;
         SceneFile::parse(&text, &name)
     }
 
@@ -265,7 +271,10 @@ impl SceneFile {
     /// # Errors
     /// [`SceneError::Parse`].
     pub fn parse(text: &str, name: &str) -> Result<SceneFile, SceneError> {
-        toml::from_str(text).map_err(|e| SceneError::Parse { path: name.to_owned(), message: e.to_string() })
+        toml::from_str(text).map_err(|e| SceneError::Parse {
+            path: name.to_owned(),
+            message: e.to_string(),
+        })
     }
 
     /// Checks every value, loads the model (a relative path is taken from
@@ -279,11 +288,17 @@ impl SceneFile {
         let height = r.height.unwrap_or(600);
         for (key, v) in [("render.width", width), ("render.height", height)] {
             if v == 0 || v > MAX_IMAGE_SIDE {
-                return Err(value_error(key, format!("must be 1..={MAX_IMAGE_SIDE}, got {v}")));
+                return Err(value_error(
+                    key,
+                    format!("must be 1..={MAX_IMAGE_SIDE}, got {v}"),
+                ));
             }
         }
         if u64::from(width) * u64::from(height) > MAX_IMAGE_PIXELS {
-            return Err(value_error("render", format!("{width}x{height} exceeds {MAX_IMAGE_PIXELS} pixels")));
+            return Err(value_error(
+                "render",
+                format!("{width}x{height} exceeds {MAX_IMAGE_PIXELS} pixels"),
+            ));
         }
         let options = RenderOptions {
             width,
@@ -301,7 +316,10 @@ impl SceneFile {
         let (mesh, default_crease) = self.load_model(base_dir)?;
         let crease = match self.model.crease_angle {
             Some(a) if !(a.is_finite() && (0.0..=180.0).contains(&a)) => {
-                return Err(value_error("model.crease_angle", format!("must be 0..=180 degrees, got {a}")));
+                return Err(value_error(
+                    "model.crease_angle",
+                    format!("must be 0..=180 degrees, got {a}"),
+                ));
             }
             Some(a) => Some(a),
             None => default_crease,
@@ -309,10 +327,15 @@ impl SceneFile {
         let choice = self.model.normals.unwrap_or_default();
         let normals = match (choice, mesh.file_normals()) {
             (NormalsChoice::File, None) => {
-                return Err(value_error("model.normals", "\"file\" was asked for, but the model has no normals on every face"));
+                return Err(value_error(
+                    "model.normals",
+                    "\"file\" was asked for, but the model has no normals on every face",
+                ));
             }
             (NormalsChoice::File | NormalsChoice::Auto, Some(n)) => n.clone(),
-            (NormalsChoice::Auto | NormalsChoice::Uniform, _) => vertex_normals(&mesh, NormalWeighting::Uniform, crease),
+            (NormalsChoice::Auto | NormalsChoice::Uniform, _) => {
+                vertex_normals(&mesh, NormalWeighting::Uniform, crease)
+            }
             (NormalsChoice::Area, _) => vertex_normals(&mesh, NormalWeighting::Area, crease),
             (NormalsChoice::Angle, _) => vertex_normals(&mesh, NormalWeighting::Angle, crease),
         };
@@ -328,10 +351,15 @@ impl SceneFile {
                     near: c.near,
                     far: c.far,
                 };
-                camera.validate().map_err(|e| value_error("camera", e.to_string()))?;
+                camera
+                    .validate()
+                    .map_err(|e| value_error("camera", e.to_string()))?;
                 (mesh, camera)
             }
-            None => (mesh.normalized(), Camera::framing_sphere(Vec3::ZERO, 1.0, 45.0, aspect)),
+            None => (
+                mesh.normalized(),
+                Camera::framing_sphere(Vec3::ZERO, 1.0, 45.0, aspect),
+            ),
         };
         let yaw = finite("render.yaw", r.yaw.unwrap_or(0.0))?;
         let pitch = finite("render.pitch", r.pitch.unwrap_or(0.0))?;
@@ -363,26 +391,46 @@ impl SceneFile {
             shininess: non_negative("material.shininess", m.shininess.unwrap_or(32.0))?,
         };
         if material.shininess > 10_000.0 {
-            return Err(value_error("material.shininess", format!("must be at most 10000, got {}", material.shininess)));
+            return Err(value_error(
+                "material.shininess",
+                format!("must be at most 10000, got {}", material.shininess),
+            ));
         }
-        Ok((Scene { mesh, normals, camera, ambient, lights, material }, options))
+        Ok((
+            Scene {
+                mesh,
+                normals,
+                camera,
+                ambient,
+                lights,
+                material,
+            },
+            options,
+        ))
     }
 
     /// The model's mesh and its default crease angle.
     fn load_model(&self, base_dir: &Path) -> Result<(Mesh, Option<f32>), SceneError> {
         let source = self.model.source.as_deref().unwrap_or("teapot");
         if let Some(info) = builtin_model_info(source) {
-            let mesh = builtin_model(source, self.model.detail).map_err(|e| value_error("model.detail", e.to_string()))?;
+            let mesh = builtin_model(source, self.model.detail)
+                .map_err(|e| value_error("model.detail", e.to_string()))?;
             return Ok((mesh, info.default_crease_degrees));
         }
         if self.model.detail.is_some() {
-            return Err(value_error("model.detail", format!("only built-in models have a detail; {source:?} is a file")));
+            return Err(value_error(
+                "model.detail",
+                format!("only built-in models have a detail; {source:?} is a file"),
+            ));
         }
         let path = model_path(source, base_dir);
         if !path.exists() && !source.contains('.') && !source.contains('/') {
             return Err(value_error(
                 "model.source",
-                format!("{source:?} is neither a built-in model ({}) nor an existing file", builtin_names()),
+                format!(
+                    "{source:?} is neither a built-in model ({}) nor an existing file",
+                    builtin_names()
+                ),
             ));
         }
         Ok((load_obj(&path)?, None))
@@ -391,19 +439,29 @@ impl SceneFile {
 
 /// The built-in models' names, comma-separated.
 fn builtin_names() -> String {
-    shadelab_core::BUILTIN_MODELS.iter().map(|m| m.name).collect::<Vec<_>>().join(", ")
+    shadelab_core::BUILTIN_MODELS
+        .iter()
+        .map(|m| m.name)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Where a model source that is not built in lives.
 pub fn model_path(source: &str, base_dir: &Path) -> PathBuf {
     let p = Path::new(source);
-    if p.is_absolute() { p.to_path_buf() } else { base_dir.join(p) }
+    if p.is_absolute() {
+        p.to_path_buf()
+    } else {
+        base_dir.join(p)
+    }
 }
 
 fn resolve_light(k: usize, l: &LightSection) -> Result<Light, SceneError> {
     let key = |field: &str| format!("lights[{k}].{field}");
     let kind = match (l.kind, l.position, l.direction) {
-        (LightKindName::Point, Some(p), None) => LightKind::Point { position: vec3(&key("position"), p)? },
+        (LightKindName::Point, Some(p), None) => LightKind::Point {
+            position: vec3(&key("position"), p)?,
+        },
         (LightKindName::Directional, None, Some(d)) => {
             let direction = vec3(&key("direction"), d)?;
             if direction == Vec3::ZERO {
@@ -412,10 +470,16 @@ fn resolve_light(k: usize, l: &LightSection) -> Result<Light, SceneError> {
             LightKind::Directional { direction }
         }
         (LightKindName::Point, _, _) => {
-            return Err(value_error(key("position"), "a point light needs `position` and no `direction`"));
+            return Err(value_error(
+                key("position"),
+                "a point light needs `position` and no `direction`",
+            ));
         }
         (LightKindName::Directional, _, _) => {
-            return Err(value_error(key("direction"), "a directional light needs `direction` and no `position`"));
+            return Err(value_error(
+                key("direction"),
+                "a directional light needs `direction` and no `position`",
+            ));
         }
     };
     Ok(Light {
@@ -427,7 +491,10 @@ fn resolve_light(k: usize, l: &LightSection) -> Result<Light, SceneError> {
 
 fn rgb8(key: &str, c: [i64; 3]) -> Result<Rgb8, SceneError> {
     if let Some(v) = c.iter().find(|v| !(0..=255).contains(*v)) {
-        return Err(value_error(key, format!("each channel must be 0..=255, got {v}")));
+        return Err(value_error(
+            key,
+            format!("each channel must be 0..=255, got {v}"),
+        ));
     }
     Ok(Rgb8::new(c[0] as u8, c[1] as u8, c[2] as u8))
 }
@@ -437,11 +504,25 @@ fn rgb(key: &str, c: [i64; 3]) -> Result<Rgb, SceneError> {
 }
 
 fn finite(key: &str, v: f32) -> Result<f32, SceneError> {
-    if v.is_finite() { Ok(v) } else { Err(value_error(key, format!("must be a finite number, got {v}"))) }
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(value_error(
+            key,
+            format!("must be a finite number, got {v}"),
+        ))
+    }
 }
 
 fn non_negative(key: &str, v: f32) -> Result<f32, SceneError> {
-    if v.is_finite() && v >= 0.0 { Ok(v) } else { Err(value_error(key, format!("must be a finite number ≥ 0, got {v}"))) }
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(value_error(
+            key,
+            format!("must be a finite number ≥ 0, got {v}"),
+        ))
+    }
 }
 
 fn vec3(key: &str, v: [f32; 3]) -> Result<Vec3, SceneError> {
@@ -449,6 +530,9 @@ fn vec3(key: &str, v: [f32; 3]) -> Result<Vec3, SceneError> {
     if v.is_finite() && v.abs().max_element() <= 1e30 {
         Ok(v)
     } else {
-        Err(value_error(key, format!("must be finite and within ±1e30, got {v}")))
+        Err(value_error(
+            key,
+            format!("must be finite and within ±1e30, got {v}"),
+        ))
     }
 }

@@ -6,8 +6,7 @@
 //! tessellation level; the defaults are low so the three methods differ visibly.
 
 mod primitives;
-// TEMP until teapot.rs lands
-mod teapot { pub const DEFAULT_DETAIL: u32 = 8; pub fn teapot(_: u32) -> crate::Mesh { super::primitives::cube(1) } }
+mod teapot;
 
 use crate::mesh::Mesh;
 
@@ -114,7 +113,11 @@ pub enum ModelError {
 }
 
 fn names() -> String {
-    BUILTIN_MODELS.iter().map(|m| m.name).collect::<Vec<_>>().join(", ")
+    BUILTIN_MODELS
+        .iter()
+        .map(|m| m.name)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Information on the built-in model `name`, if there is one.
@@ -127,11 +130,18 @@ pub fn builtin_model_info(name: &str) -> Option<&'static ModelInfo> {
 /// # Errors
 /// [`ModelError`] for an unknown name or a detail out of range.
 pub fn builtin_model(name: &str, detail: Option<u32>) -> Result<Mesh, ModelError> {
-    let info = builtin_model_info(name).ok_or_else(|| ModelError::Unknown { name: name.to_owned() })?;
+    let info = builtin_model_info(name).ok_or_else(|| ModelError::Unknown {
+        name: name.to_owned(),
+    })?;
     let detail = detail.unwrap_or(info.default_detail);
     let (min, max) = info.detail_range;
     if !(min..=max).contains(&detail) {
-        return Err(ModelError::Detail { name: info.name, detail, min, max });
+        return Err(ModelError::Detail {
+            name: info.name,
+            detail,
+            min,
+            max,
+        });
     }
     Ok(match info.name {
         "cube" => primitives::cube(detail),
@@ -143,4 +153,137 @@ pub fn builtin_model(name: &str, detail: Option<u32>) -> Result<Mesh, ModelError
         "teapot" => teapot::teapot(detail),
         _ => unreachable!("every listed model is built above"),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::HashMap;
+
+    use super::*;
+    use crate::normals::face_normal_unnormalized;
+
+    /// Directed edges and how often each appears.
+    fn directed_edges(mesh: &Mesh) -> HashMap<(u32, u32), u32> {
+        let mut edges = HashMap::new();
+        for f in 0..mesh.polygon_count() {
+            let p = mesh.polygon(f);
+            for k in 0..p.len() {
+                *edges.entry((p[k], p[(k + 1) % p.len()])).or_insert(0) += 1;
+            }
+        }
+        edges
+    }
+
+    /// Signed volume enclosed by the mesh (positive when wound outward).
+    fn signed_volume(mesh: &Mesh) -> f32 {
+        let pos = mesh.positions();
+        (0..mesh.polygon_count())
+            .map(|f| {
+                let p = mesh.polygon(f);
+                (1..p.len() - 1)
+                    .map(|k| {
+                        let (a, b, c) = (
+                            pos[p[0] as usize],
+                            pos[p[k] as usize],
+                            pos[p[k + 1] as usize],
+                        );
+                        a.dot(b.cross(c)) / 6.0
+                    })
+                    .sum::<f32>()
+            })
+            .sum()
+    }
+
+    #[test]
+    fn solids_are_closed_and_consistently_wound() {
+        for info in BUILTIN_MODELS.iter().filter(|m| m.name != "teapot") {
+            for detail in [info.detail_range.0, info.default_detail, info.default_detail * 2]
+                .into_iter()
+                .filter(|d| *d <= info.detail_range.1)
+            {
+                let mesh = builtin_model(info.name, Some(detail)).unwrap();
+                let edges = directed_edges(&mesh);
+                for (&(a, b), &count) in &edges {
+                    assert_eq!(count, 1, "{} {detail}: edge {a}->{b} used {count} times", info.name);
+                    assert_eq!(
+                        edges.get(&(b, a)),
+                        Some(&1),
+                        "{} {detail}: edge {a}->{b} has no opposite: not closed or not consistently wound",
+                        info.name
+                    );
+                }
+                assert!(signed_volume(&mesh) > 0.0, "{} {detail} is wound inward", info.name);
+            }
+        }
+    }
+
+    #[test]
+    fn solid_volumes_approach_the_analytic_ones() {
+        use std::f32::consts::PI;
+        let cases = [
+            ("cube", 1, 8.0, 1e-5),
+            ("sphere", 256, 4.0 / 3.0 * PI, 2e-3),
+            ("icosphere", 5, 4.0 / 3.0 * PI, 2e-3),
+            ("torus", 256, 2.0 * PI * PI * 1.0 * 0.4 * 0.4, 2e-3),
+            ("cylinder", 512, PI * 2.0, 1e-3),
+            ("cone", 512, PI * 2.0 / 3.0, 1e-3),
+        ];
+        for (name, detail, exact, tolerance) in cases {
+            let v = signed_volume(&builtin_model(name, Some(detail)).unwrap());
+            assert!(
+                ((v - exact) / exact).abs() < tolerance,
+                "{name}: volume {v}, exact {exact}"
+            );
+        }
+    }
+
+    #[test]
+    fn every_polygon_is_planar_and_non_degenerate() {
+        for info in BUILTIN_MODELS.iter().filter(|m| m.name != "teapot") {
+            let mesh = builtin_model(info.name, None).unwrap();
+            for f in 0..mesh.polygon_count() {
+                let pts: Vec<_> = mesh
+                    .polygon(f)
+                    .iter()
+                    .map(|&i| mesh.positions()[i as usize])
+                    .collect();
+                let n = face_normal_unnormalized(&pts);
+                assert!(n.length() > 1e-6, "{} face {f} is degenerate", info.name);
+                let n = n.normalize();
+                for p in &pts {
+                    assert!(
+                        (n.dot(*p - pts[0])).abs() < 1e-5,
+                        "{} face {f} is not planar",
+                        info.name
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sphere_counts_follow_the_detail() {
+        let mesh = builtin_model("sphere", Some(12)).unwrap();
+        // 12 slices, 6 stacks: two poles and 5 rings of 12.
+        assert_eq!(mesh.positions().len(), 2 + 5 * 12);
+        assert_eq!(mesh.polygon_count(), 12 * 6);
+        let triangles = (0..mesh.polygon_count())
+            .filter(|&f| mesh.polygon(f).len() == 3)
+            .count();
+        assert_eq!(triangles, 24);
+        let ico = builtin_model("icosphere", Some(2)).unwrap();
+        assert_eq!(ico.polygon_count(), 20 * 16);
+        assert_eq!(ico.positions().len(), 162);
+    }
+
+    #[test]
+    fn bad_names_and_details_are_errors() {
+        assert!(matches!(
+            builtin_model("dodecahedron", None),
+            Err(ModelError::Unknown { .. })
+        ));
+        let e = builtin_model("sphere", Some(2)).unwrap_err();
+        assert!(e.to_string().contains("3..=512"), "{e}");
+        assert!(builtin_model("icosphere", Some(8)).is_err());
+    }
 }

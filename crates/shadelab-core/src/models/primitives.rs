@@ -38,7 +38,10 @@ impl Builder {
         if indices.len() < 3 {
             return;
         }
-        let corners: Vec<Vec3> = indices.iter().map(|&i| self.positions[i as usize]).collect();
+        let corners: Vec<Vec3> = indices
+            .iter()
+            .map(|&i| self.positions[i as usize])
+            .collect();
         let centroid = corners.iter().sum::<Vec3>() / corners.len() as f32;
         if face_normal_unnormalized(&corners).dot(centroid - inside) < 0.0 {
             indices.reverse();
@@ -65,7 +68,10 @@ pub fn cube(n: u32) -> Mesh {
                     let at = |a: u32, c: u32| {
                         normal + u * (-1.0 + a as f32 * step) + v * (-1.0 + c as f32 * step)
                     };
-                    b.polygon(&[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)], Vec3::ZERO);
+                    b.polygon(
+                        &[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)],
+                        Vec3::ZERO,
+                    );
                 }
             }
         }
@@ -85,12 +91,19 @@ pub fn uv_sphere(slices: u32) -> Mesh {
         } else if i == stacks {
             -Vec3::Y
         } else {
-            Vec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin())
+            Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                -theta.sin() * phi.sin(),
+            )
         }
     };
     for i in 0..stacks {
         for j in 0..slices {
-            b.polygon(&[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)], Vec3::ZERO);
+            b.polygon(
+                &[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)],
+                Vec3::ZERO,
+            );
         }
     }
     b.build()
@@ -100,18 +113,43 @@ pub fn uv_sphere(slices: u32) -> Mesh {
 pub fn icosphere(levels: u32) -> Mesh {
     let t = (1.0 + 5f32.sqrt()) / 2.0;
     let mut corners: Vec<Vec3> = [
-        [-1.0, t, 0.0], [1.0, t, 0.0], [-1.0, -t, 0.0], [1.0, -t, 0.0],
-        [0.0, -1.0, t], [0.0, 1.0, t], [0.0, -1.0, -t], [0.0, 1.0, -t],
-        [t, 0.0, -1.0], [t, 0.0, 1.0], [-t, 0.0, -1.0], [-t, 0.0, 1.0],
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
     ]
     .iter()
     .map(|&p| Vec3::from_array(p).normalize())
     .collect();
     let mut triangles: Vec<[u32; 3]> = vec![
-        [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11],
-        [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
-        [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
-        [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
     ];
     for _ in 0..levels {
         let mut midpoints: HashMap<(u32, u32), u32> = HashMap::new();
@@ -133,7 +171,14 @@ pub fn icosphere(levels: u32) -> Mesh {
     }
     let mut b = Builder::default();
     for [i, j, k] in triangles {
-        b.polygon(&[corners[i as usize], corners[j as usize], corners[k as usize]], Vec3::ZERO);
+        b.polygon(
+            &[
+                corners[i as usize],
+                corners[j as usize],
+                corners[k as usize],
+            ],
+            Vec3::ZERO,
+        );
     }
     b.build()
 }
@@ -156,7 +201,10 @@ pub fn torus(segments: u32) -> Mesh {
     for i in 0..segments {
         let inside = (centre(i) + centre(i + 1)) * 0.5;
         for j in 0..sides {
-            b.polygon(&[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)], inside);
+            b.polygon(
+                &[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)],
+                inside,
+            );
         }
     }
     b.build()

@@ -26,7 +26,7 @@
 //! bound them on the right.
 
 use super::{
-    FragmentSink, Interpolation, ScreenVertex, SUBPIXEL_HALF, SUBPIXEL_ONE, signed_area_ccw,
+    signed_area_ccw, FragmentSink, Interpolation, ScreenVertex, SUBPIXEL_HALF, SUBPIXEL_ONE,
 };
 
 /// Depth, 1/w and attributes, the quantities stepped across a polygon.
@@ -184,8 +184,8 @@ fn is_convex<const N: usize>(polygon: &[ScreenVertex<N>]) -> bool {
         let a = &polygon[i];
         let b = &polygon[(i + 1) % n];
         let c = &polygon[(i + 2) % n];
-        let turn = (b.x - a.x) as i128 * (c.y - b.y) as i128
-            - (b.y - a.y) as i128 * (c.x - b.x) as i128;
+        let turn =
+            (b.x - a.x) as i128 * (c.y - b.y) as i128 - (b.y - a.y) as i128 * (c.x - b.x) as i128;
         // Window y points down, so a counter-clockwise turn is negative here.
         if turn > 0 {
             return false;
@@ -233,9 +233,8 @@ pub fn rasterize_polygon<const N: usize>(
     }
 
     let image_rows = 0..i64::from(height);
-    let clip_rows = |r: std::ops::Range<i64>| {
-        r.start.max(image_rows.start)..r.end.min(image_rows.end)
-    };
+    let clip_rows =
+        |r: std::ops::Range<i64>| r.start.max(image_rows.start)..r.end.min(image_rows.end);
     let n = polygon.len();
     let mut left: Vec<Edge<'_, N>> = Vec::with_capacity(n);
     let mut right: Vec<Edge<'_, N>> = Vec::with_capacity(n);
