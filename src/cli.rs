@@ -1,6 +1,6 @@
 //! The command line: subcommands and the flags that override a scene file.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use shadelab_io::{
@@ -208,9 +208,17 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 
 impl SceneOverrides {
     /// Writes every flag that was given into `scene`.
-    pub fn apply(&self, scene: &mut SceneFile) {
+    pub fn apply(&self, scene: &mut SceneFile, scene_given: bool) {
         if let Some(m) = &self.model {
-            scene.model.source = Some(m.clone());
+            // A file named on the command line is relative to the working
+            // directory, not to the scene file.
+            let is_builtin = shadelab_core::builtin_model_info(m).is_some();
+            scene.model.source = Some(match std::path::absolute(m) {
+                Ok(path) if !is_builtin && Path::new(m).is_relative() && scene_given => {
+                    path.to_string_lossy().into_owned()
+                }
+                _ => m.clone(),
+            });
             // A different model has different (or no) details.
             scene.model.detail = None;
         }

@@ -59,10 +59,28 @@ fn main() -> ExitCode {
             if is_broken_pipe(&f.error) {
                 return ExitCode::SUCCESS;
             }
-            eprintln!("error: {:#}", f.error);
+            eprintln!("error: {}", message(&f.error));
             ExitCode::from(f.code)
         }
     }
+}
+
+/// The error and its causes, joined with ": " as `{:#}` does, but leaving out
+/// a cause whose text is already shown (the I/O errors of `shadelab-io` both
+/// display their source and return it from `source()`).
+fn message(e: &anyhow::Error) -> String {
+    let mut out = String::new();
+    for cause in e.chain() {
+        let text = cause.to_string();
+        if out.contains(&text) {
+            continue;
+        }
+        if !out.is_empty() {
+            out.push_str(": ");
+        }
+        out.push_str(&text);
+    }
+    out
 }
 
 fn is_broken_pipe(e: &anyhow::Error) -> bool {
@@ -75,7 +93,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::Render(args) => {
             let mut file = read_scene(args.scene.as_deref())?;
-            args.overrides.apply(&mut file);
+            args.overrides.apply(&mut file, args.scene.is_some());
             if let Some(s) = args.shading {
                 file.render.shading = Some(s.into());
             }
@@ -131,7 +149,7 @@ fn resolve(
     let base_dir = scene_path
         .and_then(Path::parent)
         .map(Path::to_path_buf)
-        .unwrap_or_else(|| PathBuf::from("."));
+        .unwrap_or_default();
     let (scene, options) = file.resolve(&base_dir).map_err(input_error)?;
     let mut inputs: Vec<PathBuf> = scene_path.map(Path::to_path_buf).into_iter().collect();
     if let Some(source) = &file.model.source {
@@ -195,7 +213,7 @@ fn compare(
         file.render.width = Some(480);
         file.render.height = Some(480);
     }
-    overrides.apply(&mut file);
+    overrides.apply(&mut file, scene_path.is_some());
     let (scene, options, inputs) = resolve(&file, scene_path)?;
     check_output(output, &inputs)?;
 

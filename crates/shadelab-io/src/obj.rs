@@ -63,13 +63,17 @@ pub fn parse_obj(text: &str, name: &str) -> Result<Mesh, LoadError> {
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, _materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| {
-        Err(tobj::LoadError::MaterialParseError)
-    })
-    .map_err(|e| LoadError::Invalid {
-        path: name.to_owned(),
-        message: e.to_string(),
-    })?;
+    // `tobj` reads only the checked statements: it knows neither comments
+    // after a statement nor continued lines, and what shadelab ignores
+    // (materials, lines, colours) cannot make it fail.
+    let (models, _materials) =
+        tobj::load_obj_buf(&mut summary.statements.as_bytes(), &options, |_| {
+            Err(tobj::LoadError::MaterialParseError)
+        })
+        .map_err(|e| LoadError::Invalid {
+            path: name.to_owned(),
+            message: e.to_string(),
+        })?;
 
     let mut positions = Vec::new();
     let mut polygons: Vec<Vec<u32>> = Vec::new();
@@ -118,11 +122,13 @@ pub fn parse_obj(text: &str, name: &str) -> Result<Mesh, LoadError> {
     };
     let mesh = Mesh::from_polygons(positions, polygons).map_err(invalid)?;
     if summary.every_corner_has_normal && corner_normals.len() == mesh.corners().len() {
-        mesh.with_file_normals(CornerNormals {
+        // A file whose normals include a zero vector has no usable normals:
+        // it is treated like a file without them, and normals are computed.
+        let with_normals = mesh.clone().with_file_normals(CornerNormals {
             normals,
             corner: corner_normals,
-        })
-        .map_err(invalid)
+        });
+        Ok(with_normals.unwrap_or(mesh))
     } else {
         Ok(mesh)
     }
@@ -130,6 +136,8 @@ pub fn parse_obj(text: &str, name: &str) -> Result<Mesh, LoadError> {
 
 struct Summary {
     every_corner_has_normal: bool,
+    /// The `v`, `vn`, `vt` and `f` statements, one a line, without comments.
+    statements: String,
 }
 
 /// Checks every line `tobj` will read, so errors can name the line.
@@ -142,6 +150,7 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
     let mut every_corner_has_normal = true;
     let mut logical = String::new();
     let mut first_line = 0;
+    let mut statements = String::new();
     for (k, raw) in text.lines().enumerate() {
         // A trailing backslash continues a statement on the next line.
         if logical.is_empty() {
@@ -173,21 +182,41 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
                         args.len()
                     )));
                 }
-                for a in &args[..3] {
+                // A vertex may have a fourth coordinate w (positions are divided
+                // by it); colours after x y z are ignored.
+                let used = if keyword == "v" && args.len() == 4 {
+                    4
+                } else {
+                    3
+                };
+                for (axis, a) in args[..used].iter().enumerate() {
                     let value: f32 = a
                         .parse()
                         .map_err(|_| error(format!("`{a}` is not a number")))?;
                     if !value.is_finite() {
                         return Err(error(format!("coordinate `{a}` is not a finite number")));
                     }
+                    if axis == 3 && value == 0.0 {
+                        return Err(error("the w coordinate must not be 0".into()));
+                    }
                 }
+                statements.push_str(keyword);
+                for a in &args[..used] {
+                    statements.push(' ');
+                    statements.push_str(a);
+                }
+                statements.push('\n');
                 if keyword == "v" {
                     vertices += 1;
                 } else {
                     normals += 1;
                 }
             }
-            "vt" => texcoords += 1,
+            "vt" => {
+                // Texture coordinates are ignored; only their count matters.
+                statements.push_str("vt 0 0\n");
+                texcoords += 1;
+            }
             "f" => {
                 if args.len() < 3 {
                     return Err(error(format!(
@@ -236,6 +265,9 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
                         return Err(error(format!("`{corner}`: too many `/`-separated indices")));
                     }
                 }
+                statements.push_str("f ");
+                statements.push_str(&args.join(" "));
+                statements.push('\n');
             }
             _ => {}
         }
@@ -248,5 +280,6 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
     }
     Ok(Summary {
         every_corner_has_normal,
+        statements,
     })
 }

@@ -1,0 +1,1022 @@
+//! The `shadelab` binary end to end: each test runs it in a fresh temporary
+//! directory and reads back what it wrote.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A decoded 8-bit RGB image.
+#[derive(PartialEq)]
+struct Png {
+    width: u32,
+    height: u32,
+    rgb: Vec<u8>,
+}
+
+/// Short, so that a failed comparison does not print every pixel.
+impl std::fmt::Debug for Png {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let drawn = self.rgb.chunks(3).filter(|p| *p != [0, 0, 0]).count();
+        write!(
+            f,
+            "Png {{ {}x{}, {} non-black pixels, byte sum {} }}",
+            self.width,
+            self.height,
+            drawn,
+            self.rgb.iter().map(|&c| u64::from(c)).sum::<u64>()
+        )
+    }
+}
+
+impl Png {
+    /// How many pixels differ from `background`.
+    fn drawn(&self, background: [u8; 3]) -> usize {
+        self.rgb.chunks(3).filter(|p| *p != background).count()
+    }
+
+    fn read(path: &Path) -> Png {
+        let file = std::fs::File::open(path)
+            .unwrap_or_else(|e| panic!("cannot open {}: {e}", path.display()));
+        let decoder = png::Decoder::new(std::io::BufReader::new(file));
+        let mut reader = decoder.read_info().expect("a PNG header");
+        let mut buf = vec![0; reader.output_buffer_size()];
+        let info = reader.next_frame(&mut buf).expect("a PNG frame");
+        assert_eq!(info.color_type, png::ColorType::Rgb);
+        assert_eq!(info.bit_depth, png::BitDepth::Eight);
+        buf.truncate(info.buffer_size());
+        Png {
+            width: info.width,
+            height: info.height,
+            rgb: buf,
+        }
+    }
+
+    fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
+        assert!(x < self.width && y < self.height, "({x}, {y}) is outside");
+        let at = (y as usize * self.width as usize + x as usize) * 3;
+        [self.rgb[at], self.rgb[at + 1], self.rgb[at + 2]]
+    }
+
+    /// The pixels of the rectangle at (`x`, `y`) of size `w` × `h`.
+    fn region(&self, x: u32, y: u32, w: u32, h: u32) -> Vec<[u8; 3]> {
+        (y..y + h)
+            .flat_map(|py| (x..x + w).map(move |px| (px, py)))
+            .map(|(px, py)| self.pixel(px, py))
+            .collect()
+    }
+}
+
+/// Runs the binary with `args` in `dir`.
+fn run(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_shadelab"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// Asserts success and returns nothing; shows stderr on failure.
+fn assert_ok(out: &Output) {
+    assert!(
+        out.status.success(),
+        "exit {:?}, stderr:\n{}",
+        out.status.code(),
+        stderr(out)
+    );
+    assert!(!stderr(out).contains("panicked"), "{}", stderr(out));
+}
+
+/// Asserts exit code 2, no panic, and that stderr mentions every needle.
+fn assert_input_error(out: &Output, needles: &[&str]) {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "stderr:\n{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!err.trim().is_empty(), "no message on stderr");
+    for needle in needles {
+        assert!(
+            err.contains(needle),
+            "stderr should mention {needle:?}:\n{err}"
+        );
+    }
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Names in `dir`, sorted.
+fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+fn assert_no_temporary_files(dir: &Path) {
+    let names = entries(dir);
+    assert!(
+        names.iter().all(|n| !n.ends_with(".tmp")),
+        "temporary file left behind: {names:?}"
+    );
+}
+
+const TETRA: &str = "\
+v 0 0 0
+v 1 0 0
+v 0 1 0
+v 0 0 1
+f 1 3 2
+f 1 2 4
+f 1 4 3
+f 2 3 4
+";
+
+const BLACK: [u8; 3] = [0, 0, 0];
+
+// ---- render ----
+
+#[test]
+fn render_a_builtin_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            "--model",
+            "sphere",
+            "--shading",
+            "phong",
+            "--size",
+            "64x48",
+            "-o",
+            "out.png",
+        ],
+    );
+    assert_ok(&out);
+    let image = Png::read(&dir.path().join("out.png"));
+    assert_eq!((image.width, image.height), (64, 48));
+    assert_ne!(image.pixel(32, 24), BLACK, "the sphere covers the centre");
+    for (x, y) in [(0, 0), (63, 0), (0, 47), (63, 47)] {
+        assert_eq!(image.pixel(x, y), BLACK, "corner ({x}, {y})");
+    }
+    // The summary line goes to stderr.
+    assert!(stderr(&out).contains("64x48"), "{}", stderr(&out));
+    assert_eq!(entries(dir.path()), vec!["out.png".to_owned()]);
+}
+
+#[test]
+fn render_uses_the_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "scene.toml",
+        "[model]\nsource = \"sphere\"\n[render]\nwidth = 40\nheight = 30\nbackground = [10, 20, 30]\nshading = \"flat\"\n",
+    );
+    let out = run(dir.path(), &["render", "scene.toml", "-o", "out.png"]);
+    assert_ok(&out);
+    let image = Png::read(&dir.path().join("out.png"));
+    assert_eq!((image.width, image.height), (40, 30));
+    assert_eq!(image.pixel(0, 0), [10, 20, 30]);
+    assert_eq!(image.pixel(39, 29), [10, 20, 30]);
+    assert_ne!(image.pixel(20, 15), [10, 20, 30]);
+    assert!(stderr(&out).starts_with("Flat"), "{}", stderr(&out));
+}
+
+#[test]
+fn flags_override_the_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[model]\nsource = \"sphere\"\n[render]\nwidth = 40\nheight = 30\nbackground = [10, 20, 30]\n";
+    write(dir.path(), "scene.toml", scene);
+    write(
+        dir.path(),
+        "cube.toml",
+        &scene.replace("\"sphere\"", "\"cube\""),
+    );
+
+    // --size and --background.
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            "scene.toml",
+            "--size",
+            "24x20",
+            "--background",
+            "200,100,50",
+            "-o",
+            "sized.png",
+        ],
+    );
+    assert_ok(&out);
+    let sized = Png::read(&dir.path().join("sized.png"));
+    assert_eq!((sized.width, sized.height), (24, 20));
+    assert_eq!(sized.pixel(0, 0), [200, 100, 50]);
+
+    // --model: the same as a scene that names the cube, unlike the sphere.
+    assert_ok(&run(
+        dir.path(),
+        &["render", "scene.toml", "--model", "cube", "-o", "flag.png"],
+    ));
+    assert_ok(&run(dir.path(), &["render", "cube.toml", "-o", "file.png"]));
+    assert_ok(&run(
+        dir.path(),
+        &["render", "scene.toml", "-o", "sphere.png"],
+    ));
+    let flag = Png::read(&dir.path().join("flag.png"));
+    let file = Png::read(&dir.path().join("file.png"));
+    let sphere = Png::read(&dir.path().join("sphere.png"));
+    assert_eq!(flag, file);
+    assert_ne!(flag, sphere);
+    // The scene's other keys still apply.
+    assert_eq!(flag.pixel(0, 0), [10, 20, 30]);
+    assert_eq!((flag.width, flag.height), (40, 30));
+
+    // --shading overrides the scene's shading.
+    assert_ok(&run(
+        dir.path(),
+        &[
+            "render",
+            "scene.toml",
+            "--shading",
+            "flat",
+            "-o",
+            "flat.png",
+        ],
+    ));
+    assert_ne!(Png::read(&dir.path().join("flat.png")), sphere);
+}
+
+#[test]
+fn scene_obj_path_is_relative_to_the_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("scenes/meshes")).unwrap();
+    write(dir.path(), "scenes/meshes/tetra.obj", TETRA);
+    write(
+        dir.path(),
+        "scenes/tetra.toml",
+        "[model]\nsource = \"meshes/tetra.obj\"\n[render]\nwidth = 32\nheight = 32\n",
+    );
+    let out = run(
+        dir.path(),
+        &["render", "scenes/tetra.toml", "-o", "tetra.png"],
+    );
+    assert_ok(&out);
+    let image = Png::read(&dir.path().join("tetra.png"));
+    assert!(image.rgb.chunks(3).any(|p| p != BLACK), "nothing drawn");
+}
+
+#[test]
+fn model_flag_path_is_relative_to_the_working_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("scenes")).unwrap();
+    write(dir.path(), "tetra.obj", TETRA);
+    write(
+        dir.path(),
+        "scenes/plain.toml",
+        "[render]\nwidth = 32\nheight = 32\n",
+    );
+    let out = run(
+        dir.path(),
+        &["render", "scenes/plain.toml", "--model", "tetra.obj", "-o", "tetra.png"],
+    );
+    assert_ok(&out);
+    let image = Png::read(&dir.path().join("tetra.png"));
+    assert!(image.rgb.chunks(3).any(|p| p != BLACK), "nothing drawn");
+}
+
+#[test]
+fn render_an_obj_given_on_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "tetra.obj", TETRA);
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            "--model",
+            "tetra.obj",
+            "--size",
+            "32x32",
+            "-o",
+            "out.png",
+        ],
+    );
+    assert_ok(&out);
+    let image = Png::read(&dir.path().join("out.png"));
+    assert!(image.drawn(BLACK) > 50, "{image:?}");
+}
+
+#[test]
+fn every_option_is_accepted() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "scene.toml",
+        "[model]\nsource = \"sphere\"\n[render]\nwidth = 10\nheight = 10\n",
+    );
+    let overrides = [
+        "--model",
+        "torus",
+        "--detail",
+        "12",
+        "--size",
+        "40x30",
+        "--ambient",
+        "10,20,30",
+        "--ambient-intensity",
+        "0.3",
+        "--light-pos",
+        "-2,3,4",
+        "--light-color",
+        "255,200,100",
+        "--light-intensity",
+        "0.9",
+        "--ka",
+        "100,50,50",
+        "--kd",
+        "200,100,100",
+        "--ks",
+        "255,255,255",
+        "--shininess",
+        "16",
+        "--yaw",
+        "-30",
+        "--pitch",
+        "15",
+        "--normals",
+        "area",
+        "--crease-angle",
+        "45",
+        "--interpolation",
+        "screen",
+        "--no-cull",
+        "--gouraud-specular",
+        "--background",
+        "5,6,7",
+    ];
+    let mut args = vec!["render", "scene.toml", "--shading", "gouraud"];
+    args.extend_from_slice(&overrides);
+    args.extend_from_slice(&["--output", "render.png"]);
+    assert_ok(&run(dir.path(), &args));
+    let image = Png::read(&dir.path().join("render.png"));
+    assert_eq!((image.width, image.height), (40, 30));
+    assert_eq!(image.pixel(0, 0), [5, 6, 7]);
+    assert!(image.rgb.chunks(3).any(|p| p != [5, 6, 7]), "nothing drawn");
+
+    let mut args = vec!["compare", "scene.toml", "-o", "compare.png"];
+    args.extend_from_slice(&overrides);
+    assert_ok(&run(dir.path(), &args));
+    let sheet = Png::read(&dir.path().join("compare.png"));
+    assert_eq!((sheet.width, sheet.height), (3 * 40 + 2 * 4, 30 + 28));
+}
+
+#[test]
+fn each_flag_changes_the_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = ["render", "--model", "sphere", "--size", "32x32"];
+    let render = |name: &str, extra: &[&str]| -> Png {
+        let mut args: Vec<&str> = base.to_vec();
+        args.extend_from_slice(extra);
+        let file = format!("{name}.png");
+        args.extend_from_slice(&["-o", &file]);
+        assert_ok(&run(dir.path(), &args));
+        Png::read(&dir.path().join(&file))
+    };
+    let plain = render("plain", &[]);
+    let cases: &[(&str, &[&str])] = &[
+        ("detail", &["--detail", "5"]),
+        ("ambient", &["--ambient", "0,0,255"]),
+        ("ambient-intensity", &["--ambient-intensity", "0.8"]),
+        ("light-pos", &["--light-pos", "-2,3,4"]),
+        ("light-color", &["--light-color", "0,255,0"]),
+        ("light-intensity", &["--light-intensity", "0.3"]),
+        ("ka", &["--ka", "0,0,255"]),
+        ("kd", &["--kd", "0,255,0"]),
+        ("ks", &["--ks", "0,0,0"]),
+        ("shininess", &["--shininess", "2"]),
+        ("yaw", &["--yaw", "-60"]),
+        ("pitch", &["--pitch", "40"]),
+        ("background", &["--background", "0,0,1"]),
+        ("shading", &["--shading", "flat"]),
+    ];
+    for (name, extra) in cases {
+        let image = render(name, extra);
+        assert_ne!(image, plain, "{extra:?} changed nothing");
+    }
+    // Normals, compared with the same sphere with default normals.
+    let coarse = render("coarse", &["--detail", "6"]);
+    for (name, extra) in [
+        (
+            "crease-angle",
+            &["--detail", "6", "--crease-angle", "5"][..],
+        ),
+        ("normals-area", &["--detail", "6", "--normals", "area"][..]),
+        (
+            "normals-angle",
+            &["--detail", "6", "--normals", "angle"][..],
+        ),
+    ] {
+        assert_ne!(render(name, extra), coarse, "{extra:?} changed nothing");
+    }
+    let uniform = render(
+        "normals-uniform",
+        &["--detail", "6", "--normals", "uniform"],
+    );
+    assert_eq!(uniform, coarse, "uniform is the default for a built-in");
+    // Gouraud-specific flags, compared with Gouraud otherwise alike. The
+    // finer sphere has a vertex close enough to the highlight to catch it.
+    let fine = ["--shading", "gouraud", "--detail", "48"];
+    let gouraud = render("gouraud", &fine);
+    let specular = render(
+        "gouraud-specular",
+        &[&fine[..], &["--gouraud-specular"]].concat(),
+    );
+    assert_ne!(specular, gouraud, "--gouraud-specular changed nothing");
+    let screen = render(
+        "screen",
+        &[&fine[..], &["--interpolation", "screen"]].concat(),
+    );
+    assert_ne!(screen, gouraud, "--interpolation screen changed nothing");
+    let perspective = render(
+        "perspective",
+        &[&fine[..], &["--interpolation", "perspective"]].concat(),
+    );
+    assert_eq!(perspective, gouraud, "perspective is the default");
+}
+
+#[test]
+fn no_cull_draws_back_faces() {
+    let dir = tempfile::tempdir().unwrap();
+    // Inside the cube every face is a back face.
+    write(
+        dir.path(),
+        "inside.toml",
+        "[model]\nsource = \"cube\"\n[camera]\neye = [0.1, 0.1, 0.2]\ntarget = [1, 0.4, -1]\nfov_y = 90\nnear = 0.05\nfar = 10\n[render]\nwidth = 24\nheight = 24\n",
+    );
+    assert_ok(&run(
+        dir.path(),
+        &["render", "inside.toml", "-o", "culled.png"],
+    ));
+    assert_ok(&run(
+        dir.path(),
+        &["render", "inside.toml", "--no-cull", "-o", "drawn.png"],
+    ));
+    let culled = Png::read(&dir.path().join("culled.png"));
+    let drawn = Png::read(&dir.path().join("drawn.png"));
+    assert!(culled.rgb.iter().all(|&c| c == 0), "culled: all background");
+    assert!(
+        drawn.rgb.chunks(3).all(|p| p != BLACK),
+        "no-cull: all walls"
+    );
+}
+
+#[test]
+fn negative_numbers_are_accepted_as_values() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_ok(&run(
+        dir.path(),
+        &[
+            "render",
+            "--model",
+            "sphere",
+            "--size",
+            "16x16",
+            "--light-pos",
+            "-2,3,4",
+            "--yaw",
+            "-45",
+            "--pitch",
+            "-10",
+            "-o",
+            "out.png",
+        ],
+    ));
+    assert!(dir.path().join("out.png").exists());
+    // Long form with `=` too.
+    assert_ok(&run(
+        dir.path(),
+        &[
+            "render",
+            "--model=sphere",
+            "--size=16x16",
+            "--light-pos=-2,-3,-4",
+            "-o",
+            "eq.png",
+        ],
+    ));
+}
+
+// ---- compare ----
+
+#[test]
+fn compare_draws_three_labelled_panels() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "compare",
+            "--model",
+            "sphere",
+            "--size",
+            "100x100",
+            "-o",
+            "three.png",
+        ],
+    );
+    assert_ok(&out);
+    let sheet = Png::read(&dir.path().join("three.png"));
+    assert_eq!((sheet.width, sheet.height), (3 * 100 + 2 * 4, 100 + 28));
+
+    let panels: Vec<Vec<[u8; 3]>> = (0..3)
+        .map(|k| sheet.region(k * 104, 28, 100, 100))
+        .collect();
+    for (k, panel) in panels.iter().enumerate() {
+        let drawn = panel.iter().filter(|&&p| p != BLACK).count();
+        assert!(drawn > 1000, "panel {k} has only {drawn} drawn pixels");
+        assert_eq!(panel[0], BLACK, "panel {k}'s corner is background");
+    }
+    assert_ne!(panels[0], panels[2], "flat and Phong differ");
+    assert_ne!(panels[0], panels[1], "flat and Gouraud differ");
+    assert_ne!(panels[1], panels[2], "Gouraud and Phong differ");
+
+    // The label band: mostly the band colour, with light text over each panel.
+    for k in 0..3 {
+        let band = sheet.region(k * 104, 0, 100, 28);
+        let light = band.iter().filter(|p| p.iter().all(|&c| c >= 200)).count();
+        assert!(light > 20, "panel {k}'s label has {light} light pixels");
+        assert!(light < band.len() / 2);
+    }
+    // The gaps between panels are not image.
+    for x in [100, 103, 204, 207] {
+        for y in [30, 78, 127] {
+            assert_ne!(sheet.pixel(x, y), BLACK, "gap at ({x}, {y})");
+        }
+    }
+    // The three summary lines.
+    let err = stderr(&out);
+    for title in ["Flat", "Gouraud", "Phong"] {
+        assert!(err.contains(title), "{err}");
+    }
+}
+
+#[test]
+fn compare_panels_match_single_renders() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_ok(&run(
+        dir.path(),
+        &[
+            "compare", "--model", "cube", "--size", "30x20", "--yaw", "30", "-o", "c.png",
+        ],
+    ));
+    let sheet = Png::read(&dir.path().join("c.png"));
+    for (k, shading) in ["flat", "gouraud", "phong"].iter().enumerate() {
+        let name = format!("{shading}.png");
+        assert_ok(&run(
+            dir.path(),
+            &[
+                "render",
+                "--model",
+                "cube",
+                "--size",
+                "30x20",
+                "--yaw",
+                "30",
+                "--shading",
+                shading,
+                "-o",
+                &name,
+            ],
+        ));
+        let single = Png::read(&dir.path().join(&name));
+        let panel: Vec<u8> = sheet
+            .region(k as u32 * 34, 28, 30, 20)
+            .into_iter()
+            .flatten()
+            .collect();
+        assert_eq!(panel, single.rgb, "{shading} panel");
+    }
+}
+
+#[test]
+fn compare_default_panel_size_and_tiny_panels() {
+    let dir = tempfile::tempdir().unwrap();
+    // A scene without a size: panels are 480 × 480.
+    write(
+        dir.path(),
+        "s.toml",
+        "[model]\nsource = \"cube\"\ndetail = 1\n",
+    );
+    assert_ok(&run(dir.path(), &["compare", "s.toml", "-o", "big.png"]));
+    let sheet = Png::read(&dir.path().join("big.png"));
+    assert_eq!((sheet.width, sheet.height), (3 * 480 + 8, 480 + 28));
+    // Panels narrower than their labels.
+    assert_ok(&run(
+        dir.path(),
+        &[
+            "compare", "--model", "cube", "--size", "3x2", "-o", "tiny.png",
+        ],
+    ));
+    let tiny = Png::read(&dir.path().join("tiny.png"));
+    assert_eq!((tiny.width, tiny.height), (3 * 3 + 8, 2 + 28));
+}
+
+// ---- models ----
+
+#[test]
+fn models_lists_all_builtins() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = run(dir.path(), &["models"]);
+    assert_ok(&out);
+    let text = String::from_utf8(out.stdout).unwrap();
+    let names: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "cube",
+            "sphere",
+            "icosphere",
+            "torus",
+            "cylinder",
+            "cone",
+            "teapot"
+        ]
+    );
+    assert!(text.lines().next().unwrap().starts_with("name"));
+}
+
+// ---- errors ----
+
+/// Runs `render` with `args` and `-o out.png`, expecting an input error that
+/// mentions every needle and no output file.
+fn assert_render_fails(dir: &Path, args: &[&str], needles: &[&str]) {
+    let mut all = vec!["render"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["-o", "out.png"]);
+    let out = run(dir, &all);
+    assert_input_error(&out, needles);
+    assert!(!dir.join("out.png").exists(), "{args:?} created the output");
+    assert_no_temporary_files(dir);
+}
+
+#[test]
+fn missing_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_render_fails(dir.path(), &["absent.toml"], &["absent.toml"]);
+}
+
+#[test]
+fn missing_files_are_reported_once() {
+    // The OS error appears once, not once per level of the error chain.
+    let dir = tempfile::tempdir().unwrap();
+    for args in [
+        &["render", "absent.toml", "-o", "out.png"][..],
+        &["render", "--model", "absent.obj", "-o", "out.png"][..],
+        &["compare", "--model", "absent.obj", "-o", "out.png"][..],
+        &["render", "--model", "cube", "-o", "no/dir/out.png"][..],
+    ] {
+        let err = stderr(&run(dir.path(), args));
+        assert_eq!(err.matches("os error").count(), 1, "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn malformed_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "bad.toml", "[render\nwidth = 10\n");
+    assert_render_fails(dir.path(), &["bad.toml"], &["bad.toml", "line 1"]);
+}
+
+#[test]
+fn unknown_key_in_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "bad.toml", "[render]\nwidht = 10\n");
+    assert_render_fails(dir.path(), &["bad.toml"], &["bad.toml", "widht"]);
+}
+
+#[test]
+fn out_of_range_value_in_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "bad.toml", "[material]\nshininess = -3\n");
+    assert_render_fails(dir.path(), &["bad.toml"], &["material.shininess"]);
+    write(dir.path(), "bad2.toml", "[[lights]]\nkind = \"point\"\n");
+    assert_render_fails(dir.path(), &["bad2.toml"], &["lights[0].position"]);
+}
+
+#[test]
+fn out_of_range_override() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_render_fails(
+        dir.path(),
+        &["--model", "sphere", "--shininess", "-1"],
+        &["material.shininess"],
+    );
+    assert_render_fails(
+        dir.path(),
+        &["--model", "sphere", "--detail", "1"],
+        &["model.detail"],
+    );
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--crease-angle", "200"],
+        &["model.crease_angle"],
+    );
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--normals", "file"],
+        &["model.normals"],
+    );
+}
+
+#[test]
+fn missing_obj() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_render_fails(dir.path(), &["--model", "absent.obj"], &["absent.obj"]);
+    write(dir.path(), "s.toml", "[model]\nsource = \"gone.obj\"\n");
+    assert_render_fails(dir.path(), &["s.toml"], &["gone.obj"]);
+}
+
+#[test]
+fn obj_with_a_syntax_error() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "bad.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 oops\nf 1 2 3\n",
+    );
+    assert_render_fails(dir.path(), &["--model", "bad.obj"], &["bad.obj:3:", "oops"]);
+}
+
+#[test]
+fn obj_with_an_index_out_of_range() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "bad.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n",
+    );
+    assert_render_fails(
+        dir.path(),
+        &["--model", "bad.obj"],
+        &["bad.obj:5:", "out of range"],
+    );
+    write(
+        dir.path(),
+        "neg.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n",
+    );
+    assert_render_fails(
+        dir.path(),
+        &["--model", "neg.obj"],
+        &["neg.obj:4:", "out of range"],
+    );
+}
+
+#[test]
+fn obj_with_nan() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "bad.obj",
+        "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n",
+    );
+    assert_render_fails(
+        dir.path(),
+        &["--model", "bad.obj"],
+        &["bad.obj:2:", "finite"],
+    );
+}
+
+#[test]
+fn obj_without_faces() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    assert_render_fails(
+        dir.path(),
+        &["--model", "bad.obj"],
+        &["bad.obj", "no faces"],
+    );
+}
+
+#[test]
+fn unknown_model_name() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_render_fails(
+        dir.path(),
+        &["--model", "dodecahedron"],
+        &[
+            "dodecahedron",
+            "cube",
+            "sphere",
+            "icosphere",
+            "torus",
+            "cylinder",
+            "cone",
+            "teapot",
+        ],
+    );
+}
+
+#[test]
+fn bad_size() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--size", "0x10"],
+        &["width"],
+    );
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--size", "10x0"],
+        &["height"],
+    );
+    assert_render_fails(dir.path(), &["--model", "cube", "--size", "abc"], &["abc"]);
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--size", "10x"],
+        &["--size"],
+    );
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--size", "20000x10"],
+        &["render.width"],
+    );
+}
+
+#[test]
+fn bad_colour_and_vector_flags() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--ka", "300,0,0"],
+        &["--ka"],
+    );
+    assert_render_fails(dir.path(), &["--model", "cube", "--kd", "1,2"], &["--kd"]);
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--background=-1,0,0"],
+        &["--background"],
+    );
+    // Without `=`, a leading minus reads as a flag; still a clean usage error.
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--background", "-1,0,0"],
+        &["-1"],
+    );
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--light-pos", "nan,0,0"],
+        &["--light-pos"],
+    );
+    assert_render_fails(
+        dir.path(),
+        &["--model", "cube", "--shading", "glossy"],
+        &["glossy"],
+    );
+}
+
+#[test]
+fn compare_errors_exit_2_without_output() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+    let out = run(
+        dir.path(),
+        &["compare", "--model", "bad.obj", "-o", "three.png"],
+    );
+    assert_input_error(&out, &["bad.obj:3:"]);
+    assert!(!dir.path().join("three.png").exists());
+    let out = run(dir.path(), &["compare", "--size", "0x5", "-o", "three.png"]);
+    assert_input_error(&out, &["render.width"]);
+    assert!(!dir.path().join("three.png").exists());
+}
+
+#[test]
+fn missing_output_flag_and_unknown_subcommand() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_input_error(
+        &run(dir.path(), &["render", "--model", "cube"]),
+        &["--output"],
+    );
+    assert_input_error(&run(dir.path(), &["paint"]), &["paint"]);
+    assert_input_error(&run(dir.path(), &[]), &["Usage"]);
+}
+
+#[test]
+fn unwritable_output_exits_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            "--model",
+            "cube",
+            "--size",
+            "8x8",
+            "-o",
+            "no/such/dir/out.png",
+        ],
+    );
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("cannot write"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(entries(dir.path()).is_empty(), "{:?}", entries(dir.path()));
+}
+
+// ---- inputs and outputs ----
+
+#[test]
+fn render_refuses_to_overwrite_the_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "[model]\nsource = \"cube\"\n[render]\nwidth = 8\nheight = 8\n";
+    let scene = write(dir.path(), "scene.toml", text);
+    for output in ["scene.toml", "./scene.toml"] {
+        let out = run(dir.path(), &["render", "scene.toml", "-o", output]);
+        assert_input_error(&out, &["scene.toml"]);
+        assert_eq!(std::fs::read_to_string(&scene).unwrap(), text);
+        let out = run(dir.path(), &["compare", "scene.toml", "-o", output]);
+        assert_input_error(&out, &["scene.toml"]);
+        assert_eq!(std::fs::read_to_string(&scene).unwrap(), text);
+    }
+    assert_eq!(entries(dir.path()), vec!["scene.toml".to_owned()]);
+}
+
+#[test]
+fn render_refuses_to_overwrite_the_obj() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = write(dir.path(), "tetra.obj", TETRA);
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            "--model",
+            "tetra.obj",
+            "--size",
+            "8x8",
+            "-o",
+            "tetra.obj",
+        ],
+    );
+    assert_input_error(&out, &["tetra.obj"]);
+    assert_eq!(std::fs::read_to_string(&obj).unwrap(), TETRA);
+
+    // Named by a scene file in a subdirectory, written from elsewhere.
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    let nested = write(&dir.path().join("sub"), "m.obj", TETRA);
+    write(
+        &dir.path().join("sub"),
+        "s.toml",
+        "[model]\nsource = \"m.obj\"\n[render]\nwidth = 8\nheight = 8\n",
+    );
+    let out = run(dir.path(), &["render", "sub/s.toml", "-o", "sub/m.obj"]);
+    assert_input_error(&out, &["m.obj"]);
+    assert_eq!(std::fs::read_to_string(&nested).unwrap(), TETRA);
+}
+
+#[test]
+fn existing_output_is_replaced_atomically() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "out.png", "an old file that is not a PNG");
+    assert_ok(&run(
+        dir.path(),
+        &[
+            "render", "--model", "cube", "--size", "20x10", "-o", "out.png",
+        ],
+    ));
+    let image = Png::read(&path);
+    assert_eq!((image.width, image.height), (20, 10));
+    assert_eq!(entries(dir.path()), vec!["out.png".to_owned()]);
+
+    assert_ok(&run(
+        dir.path(),
+        &[
+            "compare", "--model", "cube", "--size", "20x10", "-o", "out.png",
+        ],
+    ));
+    let sheet = Png::read(&path);
+    assert_eq!((sheet.width, sheet.height), (68, 38));
+    assert_eq!(entries(dir.path()), vec!["out.png".to_owned()]);
+}
+
+#[test]
+fn failed_render_keeps_an_existing_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "out.png", "previous contents");
+    let out = run(
+        dir.path(),
+        &["render", "--model", "nosuchmodel", "-o", "out.png"],
+    );
+    assert_input_error(&out, &["nosuchmodel"]);
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "previous contents");
+    assert_eq!(entries(dir.path()), vec!["out.png".to_owned()]);
+}
