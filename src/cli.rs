@@ -59,7 +59,7 @@ pub struct CompareArgs {
 /// Flags that override the scene file, key by key.
 #[derive(Debug, Args, Default)]
 pub struct SceneOverrides {
-    /// Built-in model name or .obj path (`shadelab models` lists the built-ins).
+    /// Built-in model name or mesh file (.obj, .stl, .ply, .gltf, .glb); `shadelab models` lists the built-ins.
     #[arg(long)]
     pub model: Option<String>,
     /// Tessellation level of a built-in model.

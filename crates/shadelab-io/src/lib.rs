@@ -1,17 +1,25 @@
 //! shadelab's file formats: OBJ meshes in, TOML scenes, PNG images out.
 #![warn(missing_docs)]
 
+mod gltf;
+mod mesh_file;
 mod obj;
+mod ply;
 mod png;
 mod scene;
+mod stl;
 
+pub use gltf::{load_gltf, parse_gltf};
+pub use mesh_file::{load_mesh, MAX_MESH_BYTES, MESH_EXTENSIONS};
 pub use obj::{load_obj, parse_obj, MAX_OBJ_BYTES};
+pub use ply::{load_ply, parse_ply};
 pub use png::{encode_png, read_png, write_png};
 pub use scene::{
     model_path, AmbientSection, CameraSection, InterpolationName, LightKindName, LightSection,
     MaterialSection, ModelSection, NormalsChoice, RenderSection, SceneError, SceneFile,
     ShadingName,
 };
+pub use stl::{load_stl, parse_stl};
 
 /// Why a mesh file could not be loaded.
 #[derive(Debug, thiserror::Error)]

@@ -15,7 +15,7 @@ use shadelab_core::{
     MAX_IMAGE_SIDE,
 };
 
-use crate::{load_obj, LoadError};
+use crate::{load_mesh, LoadError};
 
 /// A scene file as written: every key optional.
 #[derive(Debug, Clone, Default, Deserialize, PartialEq)]
@@ -43,7 +43,7 @@ pub struct SceneFile {
 #[derive(Debug, Clone, Default, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ModelSection {
-    /// A built-in model's name or a path to an .obj file (relative to the scene file).
+    /// A built-in model's name or a path to a mesh file (.obj, .stl, .ply, .gltf, .glb), relative to the scene file.
     pub source: Option<String>,
     /// auto | file | uniform | area | angle
     pub normals: Option<NormalsChoice>,
@@ -433,7 +433,7 @@ impl SceneFile {
                 ),
             ));
         }
-        Ok((load_obj(&path)?, None))
+        Ok((load_mesh(&path)?, None))
     }
 }
 

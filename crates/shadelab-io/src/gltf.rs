@@ -1,0 +1,421 @@
+//! glTF 2.0 meshes, `.gltf` (JSON) and `.glb` (binary), read with the `gltf`
+//! crate.
+//!
+//! `gltf` is used with its default features off and only `utils` (accessor
+//! readers) on: its `import` feature would pull in `image` (with JPEG and
+//! PNG decoders) to load textures shadelab never uses. So
+//! [`gltf::Gltf::from_slice`](::gltf::Gltf::from_slice) parses and validates
+//! the document (JSON or GLB, told by the `glTF` magic, not by extension),
+//! and this module loads the buffers itself: the GLB `BIN` chunk,
+//! `data:…;base64,` URIs (decoded with the `base64` crate), and relative
+//! file URIs (percent-decoded, read from beside the file, all files together
+//! within [`crate::MAX_MESH_BYTES`]). Other URI schemes are refused.
+//!
+//! What is read: the default scene (or, without one, the first scene; a file
+//! with no scene at all uses every root node), walked from its root nodes
+//! with each node's transform multiplied into its parent's; every primitive
+//! of mode `TRIANGLES` (other modes are skipped), indexed or not; its
+//! `POSITION`s transformed to world space. `NORMAL`s, transformed by the
+//! inverse transpose of the node's matrix, become file normals when every
+//! triangle primitive has them (and every transform is invertible). Under a
+//! transform with a negative determinant the winding is reversed, as the
+//! glTF specification says. Vertices of different primitives are not welded.
+//! Materials, textures, skins, morph targets and cameras are ignored; sparse
+//! accessors and accessors without a buffer view are refused.
+//!
+//! Every accessor used is checked here (type, component type, count, stride
+//! and that it lies inside its buffer view and buffer) before `gltf`'s
+//! reader sees it: that reader slices and asserts on what it is given
+//! (`count - 1` underflows for an empty accessor, a too-small stride trips
+//! a debug assertion), so checking first keeps malformed files from
+//! panicking. `Gltf::from_slice` itself was found to panic (an index out of
+//! bounds in `gltf-json`'s validation when a primitive's `POSITION` names an
+//! accessor that does not exist), so that one call runs under
+//! `std::panic::catch_unwind` and a panic becomes a [`LoadError::Invalid`];
+//! the panic message still goes to standard error through the panic hook.
+
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+use ::gltf::accessor::{DataType, Dimensions};
+use ::gltf::buffer::Source;
+use ::gltf::mesh::{Mode, Semantic};
+use base64::Engine;
+use glam::{Mat3, Mat4, Vec3};
+use shadelab_core::{CornerNormals, Mesh};
+
+use crate::mesh_file::{invalid, mesh_error, read_capped, MAX_MESH_BYTES};
+use crate::LoadError;
+
+/// Reads a glTF 2.0 file, `.gltf` or `.glb`; external buffers are read
+/// from the file's directory.
+///
+/// # Errors
+/// [`LoadError`] naming the file (and the buffer, accessor, mesh or node at
+/// fault): unreadable, too large, not glTF, invalid JSON or GLB, missing or
+/// short buffers, bad accessors, indices out of range, non-finite values,
+/// no triangles.
+pub fn load_gltf(path: &Path) -> Result<Mesh, LoadError> {
+    let bytes = read_capped(path, MAX_MESH_BYTES)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    parse_gltf(&bytes, &path.display().to_string(), Some(base))
+}
+
+/// Parses glTF (JSON or GLB) bytes; `name` is used in error messages and
+/// external buffers are read from `base_dir` (none: they are refused).
+///
+/// # Errors
+/// As [`load_gltf`].
+pub fn parse_gltf(bytes: &[u8], name: &str, base_dir: Option<&Path>) -> Result<Mesh, LoadError> {
+    // `gltf-json` 1.4.1's validation indexes `accessors` with the POSITION
+    // attribute's value before checking it (mesh.rs, `primitive_validate_hook`),
+    // so a file whose POSITION names a missing accessor panics: catch that.
+    let gltf = std::panic::catch_unwind(|| ::gltf::Gltf::from_slice(bytes))
+        .map_err(|_| {
+            invalid(
+                name,
+                "not a valid glTF 2.0 file: the `gltf` crate panicked while validating it \
+                 (a POSITION attribute naming an accessor that does not exist?)",
+            )
+        })?
+        .map_err(|e| invalid(name, format!("not a valid glTF 2.0 file: {e}")))?;
+    let budget = MAX_MESH_BYTES.saturating_sub(bytes.len() as u64);
+    let buffers = load_buffers(&gltf, name, base_dir, budget)?;
+
+    // The nodes to start from.
+    let roots: Vec<::gltf::Node> = match gltf.default_scene().or_else(|| gltf.scenes().next()) {
+        Some(scene) => scene.nodes().collect(),
+        None => {
+            let children: HashSet<usize> = gltf
+                .nodes()
+                .flat_map(|n| n.children().map(|c| c.index()))
+                .collect();
+            gltf.nodes()
+                .filter(|n| !children.contains(&n.index()))
+                .collect()
+        }
+    };
+
+    let mut out = Builder::default();
+    let mut visited = HashSet::new();
+    let mut stack: Vec<(::gltf::Node, Mat4)> = roots
+        .into_iter()
+        .rev()
+        .map(|n| (n, Mat4::IDENTITY))
+        .collect();
+    while let Some((node, parent)) = stack.pop() {
+        if !visited.insert(node.index()) {
+            return Err(invalid(
+                name,
+                format!(
+                    "node {} is reached twice: the node hierarchy is not a tree",
+                    node.index()
+                ),
+            ));
+        }
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if !world.is_finite() {
+            return Err(invalid(
+                name,
+                format!("node {}: its transform is not finite", node.index()),
+            ));
+        }
+        if let Some(mesh) = node.mesh() {
+            for primitive in mesh.primitives() {
+                let at = format!("mesh {}, primitive {}", mesh.index(), primitive.index());
+                if primitive.mode() != Mode::Triangles {
+                    out.skipped += 1;
+                    continue;
+                }
+                out.add(&primitive, world, &buffers, name, &at)?;
+            }
+        }
+        for child in node.children().collect::<Vec<_>>().into_iter().rev() {
+            stack.push((child, world));
+        }
+    }
+    out.finish(name)
+}
+
+/// The triangles gathered so far.
+#[derive(Default)]
+struct Builder {
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    /// Whether every triangle primitive so far had usable normals.
+    all_normals: bool,
+    primitives: usize,
+    skipped: usize,
+}
+
+impl Builder {
+    fn add(
+        &mut self,
+        primitive: &::gltf::Primitive,
+        world: Mat4,
+        buffers: &[Vec<u8>],
+        name: &str,
+        at: &str,
+    ) -> Result<(), LoadError> {
+        let error = |message: String| invalid(name, format!("{at}: {message}"));
+        let position = primitive
+            .get(&Semantic::Positions)
+            .ok_or_else(|| error("no POSITION attribute".into()))?;
+        check_accessor(&position, &[Dimensions::Vec3], &[DataType::F32], buffers)
+            .map_err(|m| error(format!("POSITION accessor {}: {m}", position.index())))?;
+        let normal = primitive.get(&Semantic::Normals);
+        if let Some(n) = &normal {
+            check_accessor(n, &[Dimensions::Vec3], &[DataType::F32], buffers)
+                .map_err(|m| error(format!("NORMAL accessor {}: {m}", n.index())))?;
+            if n.count() != position.count() {
+                return Err(error(format!(
+                    "NORMAL accessor {} has {} elements, POSITION has {}",
+                    n.index(),
+                    n.count(),
+                    position.count()
+                )));
+            }
+        }
+        if let Some(i) = primitive.indices() {
+            check_accessor(
+                &i,
+                &[Dimensions::Scalar],
+                &[DataType::U8, DataType::U16, DataType::U32],
+                buffers,
+            )
+            .map_err(|m| error(format!("index accessor {}: {m}", i.index())))?;
+        }
+
+        let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+        let local: Vec<Vec3> = reader
+            .read_positions()
+            .ok_or_else(|| error("POSITION data could not be read".into()))?
+            .map(Vec3::from_array)
+            .collect();
+        let count = local.len();
+        let indices: Vec<u32> = match reader.read_indices() {
+            Some(i) => i.into_u32().collect(),
+            None if primitive.indices().is_some() => {
+                return Err(error("index data could not be read".into()));
+            }
+            None => (0..count as u32).collect(),
+        };
+        if indices.len() % 3 != 0 {
+            return Err(error(format!(
+                "{} indices: TRIANGLES needs a multiple of 3",
+                indices.len()
+            )));
+        }
+        if let Some((k, &i)) = indices
+            .iter()
+            .enumerate()
+            .find(|(_, &i)| i as usize >= count)
+        {
+            return Err(error(format!(
+                "index {k} is {i}, but the primitive has {count} vertices"
+            )));
+        }
+        if self.triangles.len() * 3 + indices.len() > Mesh::MAX_CORNERS {
+            return Err(error(format!(
+                "more than {} triangle corners in the scene",
+                Mesh::MAX_CORNERS
+            )));
+        }
+
+        let base = self.positions.len() as u32;
+        self.positions
+            .extend(local.iter().map(|&p| world.transform_point3(p)));
+        let flip = world.determinant() < 0.0;
+        self.triangles.extend(indices.chunks_exact(3).map(|t| {
+            let t = [base + t[0], base + t[1], base + t[2]];
+            if flip {
+                [t[0], t[2], t[1]]
+            } else {
+                t
+            }
+        }));
+
+        let normal_matrix = Mat3::from_mat4(world);
+        let invertible = normal_matrix.determinant() != 0.0;
+        let normals = match (normal, reader.read_normals()) {
+            (Some(_), Some(n)) if invertible => Some(n),
+            (Some(_), None) => return Err(error("NORMAL data could not be read".into())),
+            _ => None,
+        };
+        self.all_normals = (self.primitives == 0 || self.all_normals) && normals.is_some();
+        if let Some(n) = normals {
+            let m = normal_matrix.inverse().transpose();
+            self.normals.extend(n.map(|n| m * Vec3::from_array(n)));
+        } else {
+            self.normals.extend(std::iter::repeat_n(Vec3::ZERO, count));
+        }
+        self.primitives += 1;
+        Ok(())
+    }
+
+    fn finish(self, name: &str) -> Result<Mesh, LoadError> {
+        if self.triangles.is_empty() {
+            return Err(invalid(
+                name,
+                format!(
+                    "no triangles in the scene ({} triangle primitives, {} primitives of other modes skipped)",
+                    self.primitives, self.skipped
+                ),
+            ));
+        }
+        let mesh = Mesh::from_polygons(self.positions, self.triangles).map_err(mesh_error(name))?;
+        if self.all_normals {
+            let corner = mesh.corners().to_vec();
+            mesh.with_file_normals(CornerNormals {
+                normals: self.normals,
+                corner,
+            })
+            .map_err(mesh_error(name))
+        } else {
+            Ok(mesh)
+        }
+    }
+}
+
+/// Checks an accessor so that `gltf`'s reader can read it without panicking.
+fn check_accessor(
+    accessor: &::gltf::Accessor,
+    dimensions: &[Dimensions],
+    types: &[DataType],
+    buffers: &[Vec<u8>],
+) -> Result<(), String> {
+    if !dimensions.contains(&accessor.dimensions()) || !types.contains(&accessor.data_type()) {
+        return Err(format!(
+            "type {:?} of {:?} is not supported here (expected {:?} of {:?})",
+            accessor.dimensions(),
+            accessor.data_type(),
+            dimensions,
+            types
+        ));
+    }
+    if accessor.normalized() {
+        return Err("normalized integer data is not supported here".into());
+    }
+    if accessor.sparse().is_some() {
+        return Err("sparse accessors are not supported".into());
+    }
+    let view = accessor
+        .view()
+        .ok_or("it has no bufferView (all zeros); not supported")?;
+    let count = accessor.count();
+    if count == 0 {
+        return Err("count is 0".into());
+    }
+    let size = accessor.size();
+    let stride = view.stride().unwrap_or(size);
+    if stride < size {
+        return Err(format!(
+            "buffer view {} has a stride of {stride} bytes, less than the element size {size}",
+            view.index()
+        ));
+    }
+    let end = (count as u128 - 1) * stride as u128 + size as u128 + accessor.offset() as u128;
+    if end > view.length() as u128 {
+        return Err(format!(
+            "{count} elements from byte {} with stride {stride} end at byte {end}, \
+             past the end of buffer view {} ({} bytes)",
+            accessor.offset(),
+            view.index(),
+            view.length()
+        ));
+    }
+    let buffer = view.buffer().index();
+    let available = buffers.get(buffer).map_or(0, Vec::len);
+    let view_end = view.offset() as u128 + view.length() as u128;
+    if view_end > available as u128 {
+        return Err(format!(
+            "buffer view {} ends at byte {view_end} of buffer {buffer}, which has {available} bytes",
+            view.index()
+        ));
+    }
+    Ok(())
+}
+
+/// Every buffer's bytes, in order.
+fn load_buffers(
+    gltf: &::gltf::Gltf,
+    name: &str,
+    base_dir: Option<&Path>,
+    mut budget: u64,
+) -> Result<Vec<Vec<u8>>, LoadError> {
+    let mut buffers = Vec::new();
+    for buffer in gltf.buffers() {
+        let k = buffer.index();
+        let (data, what) = match buffer.source() {
+            Source::Bin => {
+                let blob = gltf.blob.as_deref().ok_or_else(|| {
+                    invalid(
+                        name,
+                        format!("buffer {k} refers to the GLB binary chunk, but there is none"),
+                    )
+                })?;
+                (blob.to_vec(), "the GLB binary chunk".to_owned())
+            }
+            Source::Uri(uri) if uri.starts_with("data:") => {
+                let (_, payload) = uri.split_once(";base64,").ok_or_else(|| {
+                    invalid(
+                        name,
+                        format!("buffer {k}: a data URI must be base64 (`;base64,`)"),
+                    )
+                })?;
+                let data = base64::engine::general_purpose::STANDARD
+                    .decode(payload)
+                    .map_err(|e| invalid(name, format!("buffer {k}: bad base64 data URI: {e}")))?;
+                (data, "its data URI".to_owned())
+            }
+            Source::Uri(uri) => {
+                let path = relative_path(uri, base_dir)
+                    .map_err(|m| invalid(name, format!("buffer {k}, URI `{uri}`: {m}")))?;
+                let data = read_capped(&path, budget)
+                    .map_err(|e| invalid(name, format!("buffer {k}: {e}")))?;
+                (data, format!("file {}", path.display()))
+            }
+        };
+        budget = budget.saturating_sub(data.len() as u64);
+        if data.len() < buffer.length() {
+            return Err(invalid(
+                name,
+                format!(
+                    "buffer {k}: byteLength is {} but {what} has only {} bytes",
+                    buffer.length(),
+                    data.len()
+                ),
+            ));
+        }
+        buffers.push(data);
+    }
+    Ok(buffers)
+}
+
+/// The file a relative URI names.
+fn relative_path(uri: &str, base_dir: Option<&Path>) -> Result<PathBuf, String> {
+    let base = base_dir.ok_or("external buffers cannot be read here")?;
+    if uri.contains(':') || uri.starts_with('/') || uri.starts_with('\\') {
+        return Err("only relative file URIs and base64 data URIs are supported".into());
+    }
+    let decoded = percent_decode(uri).ok_or("malformed percent-encoding")?;
+    Ok(base.join(decoded))
+}
+
+fn percent_decode(s: &str) -> Option<String> {
+    let bytes = s.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut k = 0;
+    while k < bytes.len() {
+        if bytes[k] == b'%' {
+            let hex = std::str::from_utf8(bytes.get(k + 1..k + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            k += 3;
+        } else {
+            out.push(bytes[k]);
+            k += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}

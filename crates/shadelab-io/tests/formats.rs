@@ -1,0 +1,935 @@
+//! STL, PLY and glTF loading, and `load_mesh`'s dispatch, on files written here.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use shadelab_core::Mesh;
+use shadelab_io::{
+    load_gltf, load_mesh, load_obj, load_ply, load_stl, LoadError, SceneFile, MAX_MESH_BYTES,
+};
+
+// ---------------------------------------------------------------- helpers
+
+/// A tetrahedron wound counter-clockwise seen from outside.
+const TETRA: [[f32; 3]; 4] = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
+const TETRA_FACES: [[u32; 3]; 4] = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+
+fn tetra_triangles() -> Vec<[Vec3; 3]> {
+    TETRA_FACES
+        .iter()
+        .map(|f| f.map(|i| Vec3::from_array(TETRA[i as usize])))
+        .collect()
+}
+
+/// A unit cube: 8 corners, 6 quads wound counter-clockwise from outside.
+fn cube() -> (Vec<Vec3>, Vec<[u32; 4]>) {
+    let p = (0..8)
+        .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32))
+        .collect();
+    let faces = vec![
+        [0, 2, 3, 1], // z = 0
+        [4, 5, 7, 6], // z = 1
+        [0, 1, 5, 4], // y = 0
+        [2, 6, 7, 3], // y = 1
+        [0, 4, 6, 2], // x = 0
+        [1, 3, 7, 5], // x = 1
+    ];
+    (p, faces)
+}
+
+fn write(dir: &Path, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+fn binary_stl(header: &[u8], triangles: &[[Vec3; 3]]) -> Vec<u8> {
+    let mut out = vec![0u8; 80];
+    out[..header.len()].copy_from_slice(header);
+    out.extend_from_slice(&(triangles.len() as u32).to_le_bytes());
+    for t in triangles {
+        // A deliberately wrong facet normal: the loader ignores it.
+        for v in [Vec3::new(9.0, 9.0, 9.0), t[0], t[1], t[2]] {
+            for c in v.to_array() {
+                out.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+        out.extend_from_slice(&[0, 0]);
+    }
+    out
+}
+
+fn ascii_stl(first_line: &str, triangles: &[[Vec3; 3]]) -> String {
+    let mut s = format!("{first_line}\n");
+    for t in triangles {
+        s += "  facet normal 0 0 0\n    outer loop\n";
+        for v in t {
+            s += &format!("      vertex {} {} {}\n", v.x, v.y, v.z);
+        }
+        s += "    endloop\n  endfacet\n";
+    }
+    s + "endsolid t\n"
+}
+
+/// A binary PLY: float positions, optional float normals, uchar/int face lists.
+fn binary_ply(
+    positions: &[Vec3],
+    polygons: &[Vec<u32>],
+    normals: Option<&[Vec3]>,
+    big_endian: bool,
+) -> Vec<u8> {
+    let mut header = format!(
+        "ply\nformat binary_{}_endian 1.0\ncomment written by a test\nelement vertex {}\n\
+         property float x\nproperty float y\nproperty float z\n",
+        if big_endian { "big" } else { "little" },
+        positions.len()
+    );
+    if normals.is_some() {
+        header += "property float nx\nproperty float ny\nproperty float nz\n";
+    }
+    header += &format!(
+        "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+        polygons.len()
+    );
+    let mut out = header.into_bytes();
+    let f32b = |v: f32| {
+        if big_endian {
+            v.to_be_bytes()
+        } else {
+            v.to_le_bytes()
+        }
+    };
+    for (k, p) in positions.iter().enumerate() {
+        for c in p.to_array() {
+            out.extend_from_slice(&f32b(c));
+        }
+        if let Some(n) = normals {
+            for c in n[k].to_array() {
+                out.extend_from_slice(&f32b(c));
+            }
+        }
+    }
+    for poly in polygons {
+        out.push(poly.len() as u8);
+        for &i in poly {
+            let i = i as i32;
+            out.extend_from_slice(&if big_endian {
+                i.to_be_bytes()
+            } else {
+                i.to_le_bytes()
+            });
+        }
+    }
+    out
+}
+
+/// A GLB container around `json` and `bin`.
+fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
+    let mut json = json.as_bytes().to_vec();
+    while json.len() % 4 != 0 {
+        json.push(b' ');
+    }
+    let mut bin = bin.to_vec();
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::new();
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    out
+}
+
+fn f32_bytes(values: impl IntoIterator<Item = f32>) -> Vec<u8> {
+    values.into_iter().flat_map(f32::to_le_bytes).collect()
+}
+
+/// glTF JSON for one buffer of `buffer_len` bytes at `uri` (None: the GLB
+/// chunk) holding positions (`count` VEC3 floats, then optionally as many
+/// normals) and optionally u16 indices after them; `extra` adds to the root.
+struct GltfDoc<'a> {
+    uri: Option<&'a str>,
+    buffer_len: usize,
+    count: usize,
+    normals: bool,
+    indices: Option<usize>,
+    nodes: &'a str,
+    scene_nodes: &'a str,
+    mode: u32,
+}
+
+impl GltfDoc<'_> {
+    fn json(&self) -> String {
+        let positions_len = self.count * 12;
+        let mut views = vec![format!(
+            r#"{{"buffer":0,"byteOffset":0,"byteLength":{positions_len}}}"#
+        )];
+        let mut accessors = vec![format!(
+            r#"{{"bufferView":0,"componentType":5126,"count":{},"type":"VEC3","min":[0,0,0],"max":[1,1,1]}}"#,
+            self.count
+        )];
+        let mut attributes = r#""POSITION":0"#.to_string();
+        let mut offset = positions_len;
+        if self.normals {
+            views.push(format!(
+                r#"{{"buffer":0,"byteOffset":{offset},"byteLength":{positions_len}}}"#
+            ));
+            accessors.push(format!(
+                r#"{{"bufferView":1,"componentType":5126,"count":{},"type":"VEC3"}}"#,
+                self.count
+            ));
+            attributes += r#","NORMAL":1"#;
+            offset += positions_len;
+        }
+        let mut indices = String::new();
+        if let Some(n) = self.indices {
+            views.push(format!(
+                r#"{{"buffer":0,"byteOffset":{offset},"byteLength":{}}}"#,
+                n * 2
+            ));
+            accessors.push(format!(
+                r#"{{"bufferView":{},"componentType":5123,"count":{n},"type":"SCALAR"}}"#,
+                views.len() - 1
+            ));
+            indices = format!(r#","indices":{}"#, accessors.len() - 1);
+        }
+        let uri = self
+            .uri
+            .map(|u| format!(r#","uri":"{u}""#))
+            .unwrap_or_default();
+        format!(
+            r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":{}}}],"nodes":{},
+            "meshes":[{{"primitives":[{{"attributes":{{{attributes}}}{indices},"mode":{}}}]}}],
+            "buffers":[{{"byteLength":{}{uri}}}],"bufferViews":[{}],"accessors":[{}]}}"#,
+            self.scene_nodes,
+            self.nodes,
+            self.mode,
+            self.buffer_len,
+            views.join(","),
+            accessors.join(",")
+        )
+    }
+}
+
+/// The tetrahedron as a glTF buffer: positions, normals (corner directions), u16 indices.
+fn tetra_buffer() -> Vec<u8> {
+    let mut b = f32_bytes(TETRA.iter().flatten().copied());
+    let normals = [[-1., -1., -1.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
+    b.extend(f32_bytes(normals.iter().flatten().copied()));
+    for i in TETRA_FACES.iter().flatten() {
+        b.extend_from_slice(&(*i as u16).to_le_bytes());
+    }
+    b
+}
+
+fn tetra_doc<'a>(uri: Option<&'a str>, nodes: &'a str, scene_nodes: &'a str) -> GltfDoc<'a> {
+    GltfDoc {
+        uri,
+        buffer_len: 4 * 12 * 2 + 12 * 2,
+        count: 4,
+        normals: true,
+        indices: Some(12),
+        nodes,
+        scene_nodes,
+        mode: 4,
+    }
+}
+
+fn data_uri(bytes: &[u8]) -> String {
+    use base64::Engine;
+    format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(bytes)
+    )
+}
+
+/// Each triangle (after fan triangulation) as its corners' position bits,
+/// rotated to start at the smallest corner (keeping the winding), sorted.
+fn triangle_set(mesh: &Mesh) -> Vec<[[u32; 3]; 3]> {
+    let p = mesh.positions();
+    let mut out = Vec::new();
+    for f in 0..mesh.polygon_count() {
+        let poly = mesh.polygon(f);
+        for k in 1..poly.len() - 1 {
+            let t = [poly[0], poly[k], poly[k + 1]]
+                .map(|i| p[i as usize].to_array().map(|c| (c + 0.0).to_bits()));
+            let m = (0..3).min_by_key(|&r| t[r]).unwrap();
+            out.push([t[m], t[(m + 1) % 3], t[(m + 2) % 3]]);
+        }
+    }
+    out.sort_unstable();
+    out
+}
+
+fn fan(mesh: &Mesh) -> Vec<[Vec3; 3]> {
+    let p = mesh.positions();
+    let mut out = Vec::new();
+    for f in 0..mesh.polygon_count() {
+        let poly = mesh.polygon(f);
+        for k in 1..poly.len() - 1 {
+            out.push([poly[0], poly[k], poly[k + 1]].map(|i| p[i as usize]));
+        }
+    }
+    out
+}
+
+/// Asserts an `Invalid` error whose message names `path` and contains `needle`.
+#[track_caller]
+fn assert_invalid(result: Result<Mesh, LoadError>, path: &Path, needle: &str) {
+    let e = result.expect_err("the load should fail");
+    let text = e.to_string();
+    assert!(
+        matches!(e, LoadError::Invalid { .. }),
+        "expected Invalid, got {e:?}"
+    );
+    assert!(
+        text.contains(&path.display().to_string()),
+        "message does not name the file: {text}"
+    );
+    assert!(
+        text.to_lowercase().contains(&needle.to_lowercase()),
+        "message lacks {needle:?}: {text}"
+    );
+}
+
+fn sorted_positions(mesh: &Mesh) -> Vec<[u32; 3]> {
+    let mut v: Vec<_> = mesh
+        .positions()
+        .iter()
+        .map(|p| p.to_array().map(|c| (c + 0.0).to_bits()))
+        .collect();
+    v.sort_unstable();
+    v
+}
+
+// ---------------------------------------------------------------- STL
+
+#[test]
+fn stl_ascii_tetrahedron_is_welded_and_has_no_normals() {
+    let dir = tempfile::tempdir().unwrap();
+    // A bare `solid` first line, and -0 for one corner that elsewhere is 0.
+    let text = ascii_stl("solid", &tetra_triangles()).replacen("vertex 0 0 0", "vertex -0 0 -0", 1);
+    let path = write(dir.path(), "tetra.stl", text);
+    let mesh = load_stl(&path).unwrap();
+    assert_eq!(mesh.positions().len(), 4, "equal positions are welded");
+    assert_eq!(mesh.polygon_count(), 4);
+    assert!(mesh.file_normals().is_none());
+    assert_eq!(triangle_set(&mesh), {
+        let (p, f) = (TETRA.map(Vec3::from_array).to_vec(), TETRA_FACES);
+        triangle_set(&Mesh::from_polygons(p, f).unwrap())
+    });
+}
+
+#[test]
+fn stl_binary_tetrahedron() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "tetra.stl", binary_stl(b"", &tetra_triangles()));
+    let mesh = load_stl(&path).unwrap();
+    assert_eq!(mesh.positions().len(), 4);
+    assert_eq!(mesh.polygon_count(), 4);
+    assert!(mesh.file_normals().is_none());
+    assert_eq!(sorted_positions(&mesh), {
+        let mut v: Vec<_> = TETRA.iter().map(|p| p.map(f32::to_bits)).collect();
+        v.sort_unstable();
+        v
+    });
+}
+
+#[test]
+fn stl_binary_whose_header_begins_with_solid() {
+    let dir = tempfile::tempdir().unwrap();
+    let bytes = binary_stl(
+        b"solid tetra exported by a tool that should know better\n",
+        &tetra_triangles(),
+    );
+    // Upper case extension, through the dispatcher.
+    let path = write(dir.path(), "tetra.STL", bytes);
+    let mesh = load_mesh(&path).unwrap();
+    assert_eq!(mesh.positions().len(), 4);
+    assert_eq!(mesh.polygon_count(), 4);
+}
+
+#[test]
+fn stl_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let tris = tetra_triangles();
+
+    // Truncated binary: the count says 4, the data holds 3.5 triangles.
+    let mut bytes = binary_stl(b"", &tris);
+    bytes.truncate(bytes.len() - 25);
+    let path = write(dir.path(), "truncated.stl", &bytes);
+    assert_invalid(load_stl(&path), &path, "claims 4 triangles");
+
+    // A count that lies by a lot: must fail at once, allocating nothing.
+    let mut bytes = binary_stl(b"", &tris);
+    bytes[80..84].copy_from_slice(&(1u32 << 31).to_le_bytes());
+    let path = write(dir.path(), "huge.stl", &bytes);
+    let start = std::time::Instant::now();
+    assert_invalid(load_stl(&path), &path, "claims 2147483648 triangles");
+    assert!(start.elapsed().as_secs() < 2);
+
+    // The same lie behind a `solid` header: tried as ASCII, which fails too.
+    let mut bytes = binary_stl(b"solid x", &tris);
+    bytes[80..84].copy_from_slice(&(1u32 << 31).to_le_bytes());
+    let path = write(dir.path(), "huge_solid.stl", &bytes);
+    assert_invalid(load_stl(&path), &path, "not binary");
+
+    // Too short for anything, wrong magic.
+    let path = write(dir.path(), "short.stl", b"hello");
+    assert_invalid(load_stl(&path), &path, "too short");
+    let path = write(dir.path(), "empty.stl", b"");
+    assert_invalid(load_stl(&path), &path, "too short");
+
+    // Zero triangles, binary and ASCII.
+    let path = write(dir.path(), "zero.stl", binary_stl(b"", &[]));
+    assert_invalid(load_stl(&path), &path, "no faces");
+    let path = write(dir.path(), "zero_ascii.stl", "solid x\nendsolid x\n");
+    assert_invalid(load_stl(&path), &path, "no faces");
+
+    // Truncated ASCII (no endloop / endsolid).
+    let text = ascii_stl("solid t", &tris);
+    let path = write(dir.path(), "cut.stl", &text[..text.len() / 2]);
+    assert_invalid(load_stl(&path), &path, "ASCII STL");
+
+    // Non-finite coordinates: binary (with the byte offset) and ASCII.
+    let mut bad = tris.clone();
+    bad[1][2].y = f32::NAN;
+    let path = write(dir.path(), "nan.stl", binary_stl(b"", &bad));
+    // Triangle 1, corner 2, y: 84 + 50 + 12 + 2·12 + 4.
+    assert_invalid(load_stl(&path), &path, "byte 174: triangle 1, corner 2");
+    let text = ascii_stl("solid t", &tris).replacen("vertex 1 0 0", "vertex 1 inf 0", 1);
+    let path = write(dir.path(), "inf.stl", text);
+    assert_invalid(load_stl(&path), &path, "finite");
+}
+
+// ---------------------------------------------------------------- PLY
+
+#[test]
+fn ply_ascii_cube_keeps_quads_and_normals() {
+    let dir = tempfile::tempdir().unwrap();
+    let (p, faces) = cube();
+    let mut text = format!(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty double x\nproperty double y\n\
+         property double z\nproperty float nx\nproperty float ny\nproperty float nz\n\
+         property uchar red\nelement face {}\nproperty list uchar uint vertex_indices\n\
+         element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n",
+        p.len(),
+        faces.len()
+    );
+    for v in &p {
+        let n = *v - Vec3::splat(0.5);
+        text += &format!("{} {} {} {} {} {} 200\n", v.x, v.y, v.z, n.x, n.y, n.z);
+    }
+    for f in &faces {
+        text += &format!("4 {} {} {} {}\n", f[0], f[1], f[2], f[3]);
+    }
+    text += "0 1\n";
+    let path = write(dir.path(), "cube.ply", text);
+    let mesh = load_ply(&path).unwrap();
+    assert_eq!(mesh.positions(), &p[..]);
+    assert_eq!(mesh.polygon_count(), 6);
+    assert_eq!(mesh.polygon(1), &faces[1]);
+    let normals = mesh.file_normals().expect("normals");
+    assert_eq!(normals.corner, mesh.corners());
+    assert!((normals.normals[7] - Vec3::splat(0.5).normalize()).length() < 1e-6);
+}
+
+#[test]
+fn ply_binary_both_endians_and_vertex_index() {
+    let dir = tempfile::tempdir().unwrap();
+    let (p, faces) = cube();
+    let polys: Vec<Vec<u32>> = faces.iter().map(|f| f.to_vec()).collect();
+    for big in [false, true] {
+        let path = write(dir.path(), "cube.ply", binary_ply(&p, &polys, None, big));
+        let mesh = load_ply(&path).unwrap();
+        assert_eq!(mesh.positions(), &p[..], "big endian: {big}");
+        assert_eq!(mesh.corners(), polys.concat());
+        assert!(mesh.file_normals().is_none());
+    }
+    let normals: Vec<Vec3> = p.iter().map(|v| *v - Vec3::splat(0.5)).collect();
+    let path = write(
+        dir.path(),
+        "n.ply",
+        binary_ply(&p, &polys, Some(&normals), true),
+    );
+    assert!(load_ply(&path).unwrap().file_normals().is_some());
+
+    // `vertex_index` with a short/ushort list, and ASCII ints as coordinates are fine too.
+    let mut text = String::from(
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+         property float z\nelement face 4\nproperty list short ushort vertex_index\nend_header\n",
+    );
+    for v in TETRA {
+        text += &format!("{} {} {}\n", v[0], v[1], v[2]);
+    }
+    for f in TETRA_FACES {
+        text += &format!("3 {} {} {}\n", f[0], f[1], f[2]);
+    }
+    let path = write(dir.path(), "tetra.Ply", text);
+    let mesh = load_mesh(&path).unwrap();
+    assert_eq!(mesh.polygon_count(), 4);
+    assert_eq!(mesh.corners(), TETRA_FACES.concat());
+}
+
+#[test]
+fn ply_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let (p, faces) = cube();
+    let polys: Vec<Vec<u32>> = faces.iter().map(|f| f.to_vec()).collect();
+    let good = binary_ply(&p, &polys, None, false);
+    let ascii = |vertices: usize, faces: usize, body: &str| {
+        format!(
+            "ply\nformat ascii 1.0\nelement vertex {vertices}\nproperty float x\n\
+             property float y\nproperty float z\nelement face {faces}\n\
+             property list uchar int vertex_indices\nend_header\n{body}"
+        )
+    };
+    let tri = "0 0 0\n1 0 0\n0 1 0\n";
+
+    let path = write(
+        dir.path(),
+        "magic.ply",
+        b"PLY\nformat ascii 1.0\nend_header\n",
+    );
+    assert_invalid(load_ply(&path), &path, "byte 0: not a PLY file");
+
+    let header_end = good.windows(11).position(|w| w == b"end_header\n").unwrap();
+    let path = write(dir.path(), "header.ply", &good[..header_end]);
+    assert_invalid(load_ply(&path), &path, "header");
+
+    // Counts that lie: binary, by a lot (no allocation for them) and by a little.
+    let text =
+        String::from_utf8_lossy(&good[..header_end + 11]).replace("vertex 8", "vertex 4000000000");
+    let mut bytes = text.into_bytes();
+    bytes.extend_from_slice(&good[header_end + 11..]);
+    let path = write(dir.path(), "lie.ply", &bytes);
+    assert_invalid(load_ply(&path), &path, "promises");
+    let path = write(dir.path(), "truncated.ply", &good[..good.len() - 100]);
+    assert_invalid(load_ply(&path), &path, "promises");
+    // Truncated inside the last face list (the minimum size still fits).
+    let path = write(dir.path(), "cut_list.ply", &good[..good.len() - 2]);
+    assert_invalid(load_ply(&path), &path, "element `face`");
+    // ASCII: more lines promised than present.
+    let path = write(
+        dir.path(),
+        "lie_ascii.ply",
+        ascii(3, 5, &format!("{tri}3 0 1 2\n")),
+    );
+    assert_invalid(load_ply(&path), &path, "promises");
+
+    let path = write(
+        dir.path(),
+        "range.ply",
+        ascii(3, 1, &format!("{tri}3 0 1 3\n")),
+    );
+    assert_invalid(load_ply(&path), &path, "refers to vertex 3");
+    let path = write(
+        dir.path(),
+        "negative.ply",
+        ascii(3, 1, &format!("{tri}3 0 -1 2\n")),
+    );
+    assert_invalid(load_ply(&path), &path, "refers to vertex -1");
+    // ASCII PLY numbers are plain decimals (ply-rs-bw's grammar has no `nan`):
+    // NaN in binary, infinity as a float that overflows in ASCII.
+    let mut nan = p.clone();
+    nan[5].z = f32::NAN;
+    let path = write(dir.path(), "nan.ply", binary_ply(&nan, &polys, None, true));
+    assert_invalid(
+        load_ply(&path),
+        &path,
+        "vertex 5 has a coordinate that is not a finite",
+    );
+    let path = write(
+        dir.path(),
+        "inf.ply",
+        ascii(3, 1, "0 0 0\n1 1e39 0\n0 1 0\n3 0 1 2\n"),
+    );
+    assert_invalid(load_ply(&path), &path, "not a finite number");
+    let path = write(dir.path(), "zero.ply", ascii(3, 0, tri));
+    assert_invalid(load_ply(&path), &path, "no faces");
+    let path = write(
+        dir.path(),
+        "cloud.ply",
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n\
+         property float z\nend_header\n0 0 0\n",
+    );
+    assert_invalid(load_ply(&path), &path, "no faces");
+    let path = write(
+        dir.path(),
+        "garbage.ply",
+        ascii(3, 1, &format!("{tri}3 0 x 2\n")),
+    );
+    assert_invalid(load_ply(&path), &path, "element `face`");
+    let path = write(
+        dir.path(),
+        "float_list.ply",
+        ascii(3, 1, tri).replace("uchar int", "uchar float") + "3 0 1 2\n",
+    );
+    assert_invalid(load_ply(&path), &path, "list of integers");
+    let path = write(dir.path(), "two.ply", ascii(3, 1, &format!("{tri}2 0 1\n")));
+    assert_invalid(load_ply(&path), &path, "at least 3");
+}
+
+// ---------------------------------------------------------------- glTF
+
+/// Root node 0 (translated, with child 1 scaled by 2 holding the mesh) and
+/// root node 2 holding the mesh untransformed.
+const TWO_NODES: &str =
+    r#"[{"children":[1],"translation":[10,0,0]},{"mesh":0,"scale":[2,2,2]},{"mesh":0}]"#;
+
+#[test]
+fn gltf_embedded_with_node_transforms() {
+    let dir = tempfile::tempdir().unwrap();
+    let uri = data_uri(&tetra_buffer());
+    let path = write(
+        dir.path(),
+        "tetra.gltf",
+        tetra_doc(Some(&uri), TWO_NODES, "[0,2]").json(),
+    );
+    let mesh = load_mesh(&path).unwrap();
+    assert_eq!(mesh.positions().len(), 8);
+    assert_eq!(mesh.polygon_count(), 8);
+    for (k, v) in TETRA.iter().enumerate() {
+        let v = Vec3::from_array(*v);
+        assert_eq!(mesh.positions()[k], v * 2.0 + Vec3::X * 10.0);
+        assert_eq!(mesh.positions()[4 + k], v);
+    }
+    assert_eq!(mesh.polygon(4), &[4, 6, 5]);
+    let normals = mesh.file_normals().expect("every primitive has NORMAL");
+    assert_eq!(normals.corner, mesh.corners());
+    assert!((normals.normals[0] - Vec3::splat(-1.0).normalize()).length() < 1e-6);
+}
+
+#[test]
+fn gltf_external_buffer_and_mirroring() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "tetra data.bin", tetra_buffer());
+    // A non-uniform scale and a mirror: normals by the inverse transpose, winding reversed.
+    let nodes = r#"[{"mesh":0,"scale":[-1,2,1]}]"#;
+    let path = write(
+        dir.path(),
+        "tetra.gltf",
+        tetra_doc(Some("tetra%20data.bin"), nodes, "[0]").json(),
+    );
+    let mesh = load_gltf(&path).unwrap();
+    assert_eq!(mesh.positions()[1], Vec3::new(-1.0, 0.0, 0.0));
+    assert_eq!(mesh.positions()[2], Vec3::new(0.0, 2.0, 0.0));
+    assert_eq!(mesh.polygon(0), &[0, 1, 2], "file order 0 2 1, reversed");
+    let n = &mesh.file_normals().unwrap().normals;
+    assert!((n[0] - Vec3::new(1.0, -0.5, -1.0).normalize()).length() < 1e-6);
+}
+
+#[test]
+fn glb_without_normals_or_indices() {
+    let dir = tempfile::tempdir().unwrap();
+    let triangles = tetra_triangles();
+    let bin = f32_bytes(triangles.iter().flatten().flat_map(|v| v.to_array()));
+    let doc = GltfDoc {
+        uri: None,
+        buffer_len: bin.len(),
+        count: 12,
+        normals: false,
+        indices: None,
+        nodes: r#"[{"mesh":0}]"#,
+        scene_nodes: "[0]",
+        mode: 4,
+    };
+    let path = write(dir.path(), "tetra.GLB", glb(&doc.json(), &bin));
+    let mesh = load_mesh(&path).unwrap();
+    assert_eq!(mesh.positions().len(), 12, "glTF vertices are not welded");
+    assert_eq!(mesh.polygon_count(), 4);
+    assert!(mesh.file_normals().is_none());
+    assert_eq!(fan(&mesh), triangles);
+}
+
+#[test]
+fn gltf_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let buffer = tetra_buffer();
+    let uri = data_uri(&buffer);
+    let one = r#"[{"mesh":0}]"#;
+
+    let path = write(dir.path(), "garbage.gltf", "{ not json");
+    assert_invalid(load_gltf(&path), &path, "not a valid glTF");
+    let path = write(dir.path(), "magic.glb", b"glTX\x02\0\0\0\x0c\0\0\0");
+    assert_invalid(load_gltf(&path), &path, "not a valid glTF");
+    let good_glb = glb(&tetra_doc(None, one, "[0]").json(), &buffer);
+    let path = write(dir.path(), "cut.glb", &good_glb[..good_glb.len() - 40]);
+    assert_invalid(load_gltf(&path), &path, "not a valid glTF");
+    let path = write(dir.path(), "ok.glb", &good_glb);
+    assert_eq!(load_gltf(&path).unwrap().polygon_count(), 4);
+
+    // A POSITION naming a missing accessor (gltf-json's validation panics on it).
+    let json = tetra_doc(Some(&uri), one, "[0]")
+        .json()
+        .replace(r#""POSITION":0"#, r#""POSITION":9"#);
+    let path = write(dir.path(), "no_accessor.gltf", json);
+    assert_invalid(load_gltf(&path), &path, "panicked");
+
+    // byteLength larger than the data.
+    let mut doc = tetra_doc(Some(&uri), one, "[0]");
+    doc.buffer_len += 100;
+    let path = write(dir.path(), "short_buffer.gltf", doc.json());
+    assert_invalid(load_gltf(&path), &path, "byteLength");
+
+    // An accessor count that lies.
+    let json = tetra_doc(Some(&uri), one, "[0]").json().replace(
+        r#""count":4,"type":"VEC3","min""#,
+        r#""count":400000000,"type":"VEC3","min""#,
+    );
+    let path = write(dir.path(), "count.gltf", json);
+    assert_invalid(load_gltf(&path), &path, "past the end of buffer view");
+
+    // An index out of range.
+    let mut bad = buffer.clone();
+    let at = bad.len() - 2;
+    bad[at..].copy_from_slice(&7u16.to_le_bytes());
+    let bad_uri = data_uri(&bad);
+    let path = write(
+        dir.path(),
+        "index.gltf",
+        tetra_doc(Some(&bad_uri), one, "[0]").json(),
+    );
+    assert_invalid(
+        load_gltf(&path),
+        &path,
+        "is 7, but the primitive has 4 vertices",
+    );
+
+    // A NaN position.
+    let mut bad = buffer.clone();
+    bad[4..8].copy_from_slice(&f32::NAN.to_le_bytes());
+    let bad_uri = data_uri(&bad);
+    let path = write(
+        dir.path(),
+        "nan.gltf",
+        tetra_doc(Some(&bad_uri), one, "[0]").json(),
+    );
+    assert_invalid(load_gltf(&path), &path, "not a finite number");
+
+    // No triangles: points only, or no node with a mesh.
+    let mut doc = tetra_doc(Some(&uri), one, "[0]");
+    doc.mode = 0;
+    let path = write(dir.path(), "points.gltf", doc.json());
+    assert_invalid(load_gltf(&path), &path, "no triangles");
+    let path = write(
+        dir.path(),
+        "empty.gltf",
+        tetra_doc(Some(&uri), "[{}]", "[0]").json(),
+    );
+    assert_invalid(load_gltf(&path), &path, "no triangles");
+
+    // Missing external buffer; other URI schemes.
+    let path = write(
+        dir.path(),
+        "missing.gltf",
+        tetra_doc(Some("nope.bin"), one, "[0]").json(),
+    );
+    assert_invalid(load_gltf(&path), &path, "nope.bin");
+    let path = write(
+        dir.path(),
+        "http.gltf",
+        tetra_doc(Some("http://example.invalid/a.bin"), one, "[0]").json(),
+    );
+    assert_invalid(load_gltf(&path), &path, "only relative file URIs");
+    let path = write(
+        dir.path(),
+        "bad64.gltf",
+        tetra_doc(Some("data:application/octet-stream;base64,@@@"), one, "[0]").json(),
+    );
+    assert_invalid(load_gltf(&path), &path, "base64");
+}
+
+// ---------------------------------------------------------------- dispatch, limits
+
+#[test]
+fn dispatch_and_generic_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "model.xyz", "whatever");
+    assert_invalid(load_mesh(&path), &path, ".obj, .stl, .ply, .gltf, .glb");
+    let path = write(dir.path(), "noextension", "whatever");
+    assert_invalid(load_mesh(&path), &path, "extension");
+
+    let path = write(
+        dir.path(),
+        "tetra.Obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    );
+    assert_eq!(load_mesh(&path).unwrap().polygon_count(), 1);
+
+    let missing = dir.path().join("missing.ply");
+    assert!(
+        matches!(load_mesh(&missing), Err(LoadError::Io { ref path, .. }) if path.contains("missing.ply"))
+    );
+
+    // Over the size ceiling: a sparse file, refused before reading.
+    for name in ["big.stl", "big.ply", "big.glb"] {
+        let path = dir.path().join(name);
+        let file = std::fs::File::create(&path).unwrap();
+        file.set_len(MAX_MESH_BYTES + 1).unwrap();
+        match load_mesh(&path) {
+            Err(LoadError::TooLarge { path: p, bytes, .. }) => {
+                assert!(p.contains(name));
+                assert_eq!(bytes, MAX_MESH_BYTES + 1);
+            }
+            other => panic!("{name}: expected TooLarge, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn no_panic_on_mangled_files() {
+    // Every prefix and a few corruptions of each format's good file: errors, never panics.
+    let dir = tempfile::tempdir().unwrap();
+    let (p, faces) = cube();
+    let polys: Vec<Vec<u32>> = faces.iter().map(|f| f.to_vec()).collect();
+    let buffer = tetra_buffer();
+    let samples: Vec<(&str, Vec<u8>)> = vec![
+        ("a.stl", binary_stl(b"solid x", &tetra_triangles())),
+        (
+            "b.stl",
+            ascii_stl("solid t", &tetra_triangles()).into_bytes(),
+        ),
+        ("c.ply", binary_ply(&p, &polys, Some(&p), false)),
+        (
+            "d.glb",
+            glb(&tetra_doc(None, r#"[{"mesh":0}]"#, "[0]").json(), &buffer),
+        ),
+        (
+            "e.gltf",
+            tetra_doc(Some(&data_uri(&buffer)), TWO_NODES, "[0,2]")
+                .json()
+                .into_bytes(),
+        ),
+    ];
+    for (name, good) in samples {
+        let path = dir.path().join(name);
+        for cut in (0..good.len()).step_by(7) {
+            std::fs::write(&path, &good[..cut]).unwrap();
+            let _ = load_mesh(&path);
+        }
+        for k in (0..good.len()).step_by(11) {
+            for byte in [0x00, 0xff, b'9', b'-'] {
+                let mut bad = good.clone();
+                bad[k] = byte;
+                std::fs::write(&path, &bad).unwrap();
+                let _ = load_mesh(&path);
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------- real models
+
+fn shared_models() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/models");
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        eprintln!(
+            "note: {} is absent; skipping the real-model checks",
+            dir.display()
+        );
+        None
+    }
+}
+
+/// The mesh as one indexed triangle list in a GLB (fan triangulated).
+fn mesh_glb(mesh: &Mesh) -> Vec<u8> {
+    let p = mesh.positions();
+    let mut bin = f32_bytes(p.iter().flat_map(|v| v.to_array()));
+    let mut indices = Vec::new();
+    for f in 0..mesh.polygon_count() {
+        let poly = mesh.polygon(f);
+        for k in 1..poly.len() - 1 {
+            indices.extend([poly[0], poly[k], poly[k + 1]]);
+        }
+    }
+    let positions_len = bin.len();
+    bin.extend(indices.iter().flat_map(|i| i.to_le_bytes()));
+    let (lo, hi) = p.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), &v| (lo.min(v), hi.max(v)),
+    );
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
+        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}}],
+        "buffers":[{{"byteLength":{}}}],
+        "bufferViews":[{{"buffer":0,"byteLength":{positions_len}}},{{"buffer":0,"byteOffset":{positions_len},"byteLength":{}}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":{},"type":"VEC3","min":{:?},"max":{:?}}},
+        {{"bufferView":1,"componentType":5125,"count":{},"type":"SCALAR"}}]}}"#,
+        bin.len(),
+        indices.len() * 4,
+        p.len(),
+        lo.to_array(),
+        hi.to_array(),
+        indices.len()
+    );
+    glb(&json, &bin)
+}
+
+fn render_scene(dir: &Path, model: &str) -> shadelab_core::Image {
+    let toml = format!(
+        "[model]\nsource = \"{model}\"\nnormals = \"angle\"\n[render]\nwidth = 128\nheight = 128\n"
+    );
+    let (scene, options) = SceneFile::parse(&toml, "test.toml")
+        .unwrap()
+        .resolve(dir)
+        .unwrap();
+    shadelab_core::render(&scene, &options).unwrap().0
+}
+
+#[test]
+fn real_models_round_trip_through_every_format() {
+    let Some(models) = shared_models() else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    for model in ["suzanne", "spot"] {
+        let obj_path = models.join(format!("{model}.obj"));
+        let obj = load_obj(&obj_path).unwrap();
+        let expected = triangle_set(&obj);
+
+        let stl = write(
+            dir.path(),
+            &format!("{model}.stl"),
+            binary_stl(b"solid", &fan(&obj)),
+        );
+        let ply_polys: Vec<Vec<u32>> = (0..obj.polygon_count())
+            .map(|f| obj.polygon(f).to_vec())
+            .collect();
+        let ply = write(
+            dir.path(),
+            &format!("{model}.ply"),
+            binary_ply(obj.positions(), &ply_polys, None, false),
+        );
+        let glb = write(dir.path(), &format!("{model}.glb"), mesh_glb(&obj));
+
+        for path in [&stl, &ply, &glb] {
+            let mesh = load_mesh(path).unwrap();
+            assert_eq!(triangle_set(&mesh), expected, "{}", path.display());
+        }
+        let ply_mesh = load_ply(&ply).unwrap();
+        assert_eq!(
+            ply_mesh.polygon_count(),
+            obj.polygon_count(),
+            "PLY keeps polygons"
+        );
+
+        std::fs::copy(&obj_path, dir.path().join(format!("{model}.obj"))).unwrap();
+        let from_obj = render_scene(dir.path(), &format!("{model}.obj"));
+        let from_ply = render_scene(dir.path(), &format!("{model}.ply"));
+        assert!(
+            from_obj.pixels().iter().any(|&c| c != from_obj.pixel(0, 0)),
+            "{model}: the render shows something"
+        );
+        assert!(from_obj == from_ply, "{model}: OBJ and PLY renders differ");
+    }
+}
