@@ -284,7 +284,14 @@ fn model_flag_path_is_relative_to_the_working_directory() {
     );
     let out = run(
         dir.path(),
-        &["render", "scenes/plain.toml", "--model", "tetra.obj", "-o", "tetra.png"],
+        &[
+            "render",
+            "scenes/plain.toml",
+            "--model",
+            "tetra.obj",
+            "-o",
+            "tetra.png",
+        ],
     );
     assert_ok(&out);
     let image = Png::read(&dir.path().join("tetra.png"));

@@ -75,11 +75,14 @@ fn golden_images_match() {
             write_png(&path, &actual).expect("write golden image");
             continue;
         }
-        let expected = read_png(&path).unwrap_or_else(|e| {
-            panic!("{}: {e} (run with BLESS=1 to create it)", path.display())
-        });
+        let expected = read_png(&path)
+            .unwrap_or_else(|e| panic!("{}: {e} (run with BLESS=1 to create it)", path.display()));
         let same_size = (actual.width(), actual.height()) == (expected.width(), expected.height());
-        let difference = if same_size { first_difference(&actual, &expected) } else { None };
+        let difference = if same_size {
+            first_difference(&actual, &expected)
+        } else {
+            None
+        };
         if !same_size || difference.is_some() {
             let out = std::env::temp_dir().join(format!("shadelab-golden-{name}"));
             std::fs::create_dir_all(&out).unwrap();
@@ -103,5 +106,9 @@ fn golden_images_match() {
             ));
         }
     }
-    assert!(failures.is_empty(), "golden images differ:\n{}", failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "golden images differ:\n{}",
+        failures.join("\n")
+    );
 }

@@ -26,7 +26,9 @@ pub use image::Image;
 pub use lighting::{Light, LightKind, Lighting, Material, Terms};
 pub use mesh::{CornerNormals, Mesh, MeshError};
 pub use models::{builtin_model, builtin_model_info, ModelError, ModelInfo, BUILTIN_MODELS};
-pub use normals::{face_normal, face_normal_unnormalized, face_normals, vertex_normals, NormalWeighting};
+pub use normals::{
+    face_normal, face_normal_unnormalized, face_normals, vertex_normals, NormalWeighting,
+};
 pub use raster::Interpolation;
 pub use render::{
     coverage, render, RenderError, RenderOptions, RenderStats, Scene, Shading, MAX_IMAGE_PIXELS,

@@ -9,7 +9,7 @@
 
 use std::collections::HashMap;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use crate::mesh::{CornerNormals, Mesh};
 
@@ -47,7 +47,23 @@ pub fn face_normal_unnormalized(points: &[Vec3]) -> Vec3 {
 
 /// The unit face normal of a polygon, or `None` for a degenerate one.
 pub fn face_normal(points: &[Vec3]) -> Option<Vec3> {
-    face_normal_unnormalized(points).try_normalize()
+    face_normal_unnormalized(points)
+        .try_normalize()
+        .or_else(|| {
+            // The f32 products overflow for coordinates beyond about 1e19 (and
+            // underflow below about 1e-19); Newell's method in f64 has room for
+            // any f32 polygon.
+            let mut n = DVec3::ZERO;
+            for (i, p) in points.iter().enumerate() {
+                let (p, q) = (p.as_dvec3(), points[(i + 1) % points.len()].as_dvec3());
+                n += DVec3::new(
+                    (p.y - q.y) * (p.z + q.z),
+                    (p.z - q.z) * (p.x + q.x),
+                    (p.x - q.x) * (p.y + q.y),
+                );
+            }
+            n.try_normalize().map(|n| n.as_vec3())
+        })
 }
 
 /// The unit face normal of each polygon of `mesh`, `None` where degenerate.

@@ -447,9 +447,13 @@ pub(crate) fn to_window<const N: usize>(
     let x = (f64::from(v.clip.x) * inv_w + 1.0) * 0.5 * f64::from(width);
     let y = (1.0 - f64::from(v.clip.y) * inv_w) * 0.5 * f64::from(height);
     let depth = (f64::from(v.clip.z) * inv_w + 1.0) * 0.5;
+    // Clipping keeps vertices within the guard band (±2^19 pixels) unless an
+    // edge's ends are both so far away (beyond about 1e20) that f32 cannot
+    // place the cut; the clamp keeps the edge arithmetic from overflowing then.
+    let limit = f64::from(1u32 << 21);
     ScreenVertex {
-        x: snap(x),
-        y: snap(y),
+        x: snap(x.clamp(-limit, limit)),
+        y: snap(y.clamp(-limit, limit)),
         depth: depth as f32,
         inv_w: inv_w as f32,
         attrs: v.attrs,

@@ -1,4 +1,4 @@
-//! shadelab's file formats: OBJ meshes in, TOML scenes, PNG images out.
+//! shadelab's file formats: OBJ, STL, PLY and glTF meshes in, TOML scenes, PNG images out.
 #![warn(missing_docs)]
 
 mod gltf;

@@ -197,14 +197,22 @@ mod tests {
     #[test]
     fn solids_are_closed_and_consistently_wound() {
         for info in BUILTIN_MODELS.iter().filter(|m| m.name != "teapot") {
-            for detail in [info.detail_range.0, info.default_detail, info.default_detail * 2]
-                .into_iter()
-                .filter(|d| *d <= info.detail_range.1)
+            for detail in [
+                info.detail_range.0,
+                info.default_detail,
+                info.default_detail * 2,
+            ]
+            .into_iter()
+            .filter(|d| *d <= info.detail_range.1)
             {
                 let mesh = builtin_model(info.name, Some(detail)).unwrap();
                 let edges = directed_edges(&mesh);
                 for (&(a, b), &count) in &edges {
-                    assert_eq!(count, 1, "{} {detail}: edge {a}->{b} used {count} times", info.name);
+                    assert_eq!(
+                        count, 1,
+                        "{} {detail}: edge {a}->{b} used {count} times",
+                        info.name
+                    );
                     assert_eq!(
                         edges.get(&(b, a)),
                         Some(&1),
@@ -212,7 +220,11 @@ mod tests {
                         info.name
                     );
                 }
-                assert!(signed_volume(&mesh) > 0.0, "{} {detail} is wound inward", info.name);
+                assert!(
+                    signed_volume(&mesh) > 0.0,
+                    "{} {detail} is wound inward",
+                    info.name
+                );
             }
         }
     }

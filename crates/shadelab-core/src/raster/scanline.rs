@@ -18,7 +18,8 @@
 //!   f64 so drift stays far below 1/255 on any image size.
 //! * **Polygons, not just triangles.** A convex polygon is walked as a whole,
 //!   as the textbook does (Gouraud over a quad is not Gouraud over its two
-//!   triangles). A polygon that snapping made non-convex is drawn as a fan.
+//!   triangles). A polygon that snapping made non-convex is drawn as a fan
+//!   from a vertex that sees all the others.
 //!
 //! The caller passes polygons wound counter-clockwise as the viewer sees them
 //! (see [`super::signed_area_ccw`]); others draw nothing. With that winding,
@@ -225,8 +226,24 @@ pub fn rasterize_polygon<const N: usize>(
         return;
     }
     if !is_convex(polygon) {
-        for k in 1..polygon.len() - 1 {
-            let triangle = [polygon[0], polygon[k], polygon[k + 1]];
+        // Fan from a vertex that sees all the others (no fan triangle is
+        // clockwise), so the fan covers the polygon exactly: a clockwise
+        // triangle is skipped, so a fan from a vertex next to a dent would
+        // cover the dent too (and overlap the neighbour across it).
+        let n = polygon.len();
+        let fan = |apex: usize| {
+            (1..n - 1).map(move |k| {
+                [
+                    polygon[apex],
+                    polygon[(apex + k) % n],
+                    polygon[(apex + k + 1) % n],
+                ]
+            })
+        };
+        let apex = (0..n)
+            .find(|&a| fan(a).all(|t| signed_area_ccw(&t) >= 0))
+            .unwrap_or(0);
+        for triangle in fan(apex) {
             rasterize_polygon(&triangle, width, height, interpolation, sink);
         }
         return;
@@ -291,10 +308,10 @@ pub fn rasterize_polygon<const N: usize>(
                 1.0 / (q - p),
             );
             for x in first..end {
-                for k in 0..N {
-                    attrs[k] = match interpolation {
-                        Interpolation::Perspective => (v.attrs[k] / v.inv_w) as f32,
-                        Interpolation::Screen => v.attrs[k] as f32,
+                for (out, value) in attrs.iter_mut().zip(v.attrs) {
+                    *out = match interpolation {
+                        Interpolation::Perspective => (value / v.inv_w) as f32,
+                        Interpolation::Screen => value as f32,
                     };
                 }
                 sink.fragment(x as u32, row as u32, v.depth as f32, &attrs);
@@ -303,5 +320,141 @@ pub fn rasterize_polygon<const N: usize>(
         }
         l.step();
         r.step();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: i64, y: i64) -> ScreenVertex<0> {
+        ScreenVertex {
+            x,
+            y,
+            depth: 0.0,
+            inv_w: 1.0,
+            attrs: [],
+        }
+    }
+
+    /// The DDA's first pixel per row equals `ceil(x_cross − ½)` computed
+    /// afresh for each row in exact integer arithmetic.
+    #[test]
+    fn edge_bound_steps_exactly() {
+        let mut seed = 12345u64;
+        let mut next = |range: i64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) as i64).rem_euclid(2 * range) - range
+        };
+        for _ in 0..2000 {
+            let (ax, ay) = (next(1 << 16), next(1 << 16));
+            let (bx, by) = (next(1 << 16), ay + 1 + next(1 << 12).abs());
+            let first_row = (ay - SUBPIXEL_HALF + SUBPIXEL_ONE - 1).div_euclid(SUBPIXEL_ONE);
+            let (dx, dy) = (bx - ax, by - ay);
+            let cy = |row: i64| row * SUBPIXEL_ONE + SUBPIXEL_HALF;
+            let mut bound = EdgeBound::new(
+                (ax - SUBPIXEL_HALF) * dy + (cy(first_row) - ay) * dx,
+                SUBPIXEL_ONE * dy,
+                SUBPIXEL_ONE * dx,
+            );
+            for row in first_row..first_row + 64 {
+                // x_cross − ½ pixel, in snapped units, is (ax − ½)·dy + (cy − ay)·dx over dy.
+                let num = i128::from(ax - SUBPIXEL_HALF) * i128::from(dy)
+                    + i128::from(cy(row) - ay) * i128::from(dx);
+                let den = i128::from(SUBPIXEL_ONE * dy);
+                let expected = -((-num).div_euclid(den)); // ceil
+                assert_eq!(
+                    i128::from(bound.first_pixel()),
+                    expected,
+                    "edge ({ax}, {ay}) → ({bx}, {by}), row {row}"
+                );
+                let exact = num as f64 / den as f64 + 0.5;
+                assert!((bound.crossing() - exact).abs() < 1e-9 * (1.0 + exact.abs()));
+                bound.step();
+            }
+        }
+    }
+
+    #[test]
+    fn rows_between_takes_centres_in_a_half_open_range() {
+        // Row r's centre is at r·256 + 128.
+        assert_eq!(rows_between(128, 384), 0..1);
+        assert_eq!(rows_between(127, 385), 0..2);
+        assert_eq!(rows_between(129, 384), 1..1);
+        assert_eq!(rows_between(-1000, 0), -4..0);
+        assert_eq!(rows_between(0, 0), 0..0);
+    }
+
+    #[test]
+    fn convexity() {
+        let square = [v(0, 0), v(0, 256), v(256, 256), v(256, 0)];
+        assert!(signed_area_ccw(&square) > 0);
+        assert!(is_convex(&square));
+        assert!(is_convex(&[v(0, 0), v(0, 256), v(256, 0)]));
+        // Collinear points along an edge are still convex.
+        assert!(is_convex(&[
+            v(0, 0),
+            v(0, 128),
+            v(0, 256),
+            v(256, 256),
+            v(256, 0)
+        ]));
+        // A dart: the fourth vertex is pushed in.
+        let dart = [v(0, 0), v(0, 512), v(512, 512), v(200, 300)];
+        assert!(signed_area_ccw(&dart) > 0);
+        assert!(!is_convex(&dart));
+        // A pentagram turns the same way at every vertex but winds twice.
+        let star: Vec<ScreenVertex<0>> = [0, 2, 4, 1, 3]
+            .iter()
+            .map(|&k| {
+                let a = std::f64::consts::FRAC_PI_2 + f64::from(k) * std::f64::consts::TAU / 5.0;
+                v(
+                    (2000.0 + 1000.0 * a.cos()) as i64,
+                    (2000.0 - 1000.0 * a.sin()) as i64,
+                )
+            })
+            .collect();
+        assert!(signed_area_ccw(&star) > 0);
+        assert!(!is_convex(&star));
+    }
+
+    struct Count(u32);
+
+    impl FragmentSink<0> for Count {
+        fn fragment(&mut self, _: u32, _: u32, _: f32, _: &[f32; 0]) {
+            self.0 += 1;
+        }
+    }
+
+    /// A dart is drawn as a fan from its first vertex: exactly its pixels.
+    #[test]
+    fn non_convex_polygon_is_drawn_as_a_fan() {
+        let dart = [
+            v(0, 0),
+            v(0, 8 * 256),
+            v(8 * 256, 8 * 256),
+            v(3 * 256, 5 * 256),
+        ];
+        let mut whole = Count(0);
+        rasterize_polygon(&dart, 16, 16, Interpolation::Screen, &mut whole);
+        let mut parts = Count(0);
+        rasterize_polygon(
+            &[dart[0], dart[1], dart[3]],
+            16,
+            16,
+            Interpolation::Screen,
+            &mut parts,
+        );
+        rasterize_polygon(
+            &[dart[3], dart[1], dart[2]],
+            16,
+            16,
+            Interpolation::Screen,
+            &mut parts,
+        );
+        assert!(whole.0 > 0);
+        assert_eq!(whole.0, parts.0);
     }
 }
