@@ -37,18 +37,40 @@ fuzz_target!(|input: Input| {
         .points
         .iter()
         .map(|&(x, y, z)| {
-            let scale = |v: i32| if z & 1 == 0 { i64::from(v) % (32 * 256) } else { i64::from(v).clamp(-LIMIT, LIMIT) };
-            ScreenVertex { x: scale(x), y: scale(y), depth: f32::from(z) / 255.0, inv_w: 1.0, attrs: [f32::from(z)] }
+            let scale = |v: i32| {
+                if z & 1 == 0 {
+                    i64::from(v) % (32 * 256)
+                } else {
+                    i64::from(v).clamp(-LIMIT, LIMIT)
+                }
+            };
+            ScreenVertex {
+                x: scale(x),
+                y: scale(y),
+                depth: f32::from(z) / 255.0,
+                inv_w: 1.0,
+                attrs: [f32::from(z)],
+            }
         })
         .collect();
-    let interpolation = if input.screen { Interpolation::Screen } else { Interpolation::Perspective };
+    let interpolation = if input.screen {
+        Interpolation::Screen
+    } else {
+        Interpolation::Perspective
+    };
     let mut whole = Counter([0; (W * H) as usize]);
     rasterize_polygon(&polygon, W, H, interpolation, &mut whole);
     // Compare with the fan only for convex polygons (where the two must agree).
     if signed_area_ccw(&polygon) > 0 && is_strictly_convex(&polygon) {
         let mut fan = Counter([0; (W * H) as usize]);
         for k in 1..polygon.len() - 1 {
-            rasterize_polygon(&[polygon[0], polygon[k], polygon[k + 1]], W, H, interpolation, &mut fan);
+            rasterize_polygon(
+                &[polygon[0], polygon[k], polygon[k + 1]],
+                W,
+                H,
+                interpolation,
+                &mut fan,
+            );
         }
         assert_eq!(whole.0, fan.0, "polygon and fan cover different pixels");
         assert!(whole.0.iter().all(|&c| c <= 1), "a pixel covered twice");
@@ -59,11 +81,18 @@ fn is_strictly_convex(p: &[ScreenVertex<1>]) -> bool {
     let n = p.len();
     (0..n).all(|i| {
         let (a, b, c) = (&p[i], &p[(i + 1) % n], &p[(i + 2) % n]);
-        let turn = (b.x - a.x) as i128 * (c.y - b.y) as i128 - (b.y - a.y) as i128 * (c.x - b.x) as i128;
+        let turn =
+            (b.x - a.x) as i128 * (c.y - b.y) as i128 - (b.y - a.y) as i128 * (c.x - b.x) as i128;
         turn < 0
     }) && {
         // Winds once: the y direction changes sign exactly twice.
-        let dirs: Vec<i64> = (0..n).map(|i| (p[(i + 1) % n].y - p[i].y).signum()).filter(|&d| d != 0).collect();
-        (0..dirs.len()).filter(|&i| dirs[i] != dirs[(i + 1) % dirs.len()]).count() == 2
+        let dirs: Vec<i64> = (0..n)
+            .map(|i| (p[(i + 1) % n].y - p[i].y).signum())
+            .filter(|&d| d != 0)
+            .collect();
+        (0..dirs.len())
+            .filter(|&i| dirs[i] != dirs[(i + 1) % dirs.len()])
+            .count()
+            == 2
     }
 }

@@ -4,8 +4,12 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else { return };
-    let Ok(scene) = shadelab_io::SceneFile::parse(text, "fuzz.toml") else { return };
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(scene) = shadelab_io::SceneFile::parse(text, "fuzz.toml") else {
+        return;
+    };
     // Only built-in models: a path would read the file system.
     let builtin = scene
         .model
