@@ -490,3 +490,44 @@ fn nan_is_an_error() {
         assert!(stats.fragments_shaded > 0);
     }
 }
+
+/// Found by `extremes::never_panics`: vertices near 1e31 snap so far from
+/// their true place that the clipped triangle crosses itself; it must still
+/// cover no pixel twice.
+#[test]
+fn self_crossing_clipped_triangle_covers_each_pixel_once() {
+    let corners = vec![
+        Vec3::new(-2.91511e18, 1.0, 1.0),
+        Vec3::new(1.0, 4.6490695e27, 1.0),
+        Vec3::new(1.0, -4.190012e31, 1.0),
+    ];
+    let near = 1.0f32;
+    let cam = Camera {
+        eye: Vec3::new(2.667776, -1.6294, 4.0965047),
+        target: Vec3::new(2.4332476, 1.6754103, 4.7603703),
+        up: Vec3::Y,
+        fov_y_degrees: 70.0,
+        near,
+        far: near * 18.061548 * 10.0,
+    };
+    let scene = smooth(Mesh::from_polygons(corners, [[0u32, 1, 2]]).unwrap(), cam);
+    for shading in Shading::ALL {
+        render(
+            &scene,
+            &RenderOptions {
+                cull_backfaces: false,
+                ..options(40, 30, shading)
+            },
+        )
+        .unwrap();
+    }
+    let counts = coverage(
+        &scene,
+        &RenderOptions {
+            cull_backfaces: false,
+            ..options(40, 30, Shading::Flat)
+        },
+    )
+    .unwrap();
+    assert!(counts.iter().all(|&c| c <= 1), "a pixel covered twice");
+}

@@ -28,11 +28,10 @@
 //! reader sees it: that reader slices and asserts on what it is given
 //! (`count - 1` underflows for an empty accessor, a too-small stride trips
 //! a debug assertion), so checking first keeps malformed files from
-//! panicking. `Gltf::from_slice` itself was found to panic (an index out of
-//! bounds in `gltf-json`'s validation when a primitive's `POSITION` names an
-//! accessor that does not exist), so that one call runs under
-//! `std::panic::catch_unwind` and a panic becomes a [`LoadError::Invalid`];
-//! the panic message still goes to standard error through the panic hook.
+//! panicking. `gltf-json`'s own validation was found (by fuzzing) to panic
+//! when a primitive's `POSITION` names an accessor that does not exist, so
+//! the file is parsed without validation first, those indices are checked,
+//! and only then is it validated.
 
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
@@ -67,17 +66,34 @@ pub fn load_gltf(path: &Path) -> Result<Mesh, LoadError> {
 /// # Errors
 /// As [`load_gltf`].
 pub fn parse_gltf(bytes: &[u8], name: &str, base_dir: Option<&Path>) -> Result<Mesh, LoadError> {
-    // `gltf-json` 1.4.1's validation indexes `accessors` with the POSITION
-    // attribute's value before checking it (mesh.rs, `primitive_validate_hook`),
-    // so a file whose POSITION names a missing accessor panics: catch that.
-    let gltf = std::panic::catch_unwind(|| ::gltf::Gltf::from_slice(bytes))
-        .map_err(|_| {
-            invalid(
-                name,
-                "not a valid glTF 2.0 file: the `gltf` crate panicked while validating it \
-                 (a POSITION attribute naming an accessor that does not exist?)",
-            )
-        })?
+    let gltf = ::gltf::Gltf::from_slice_without_validation(bytes)
+        .map_err(|e| invalid(name, format!("not a valid glTF 2.0 file: {e}")))?;
+    // `gltf-json` 1.4.1's validation indexes `accessors` with each POSITION
+    // attribute's value before checking it (mesh.rs, `primitive_validate_hook`)
+    // and panics on a missing one: check those indices first.
+    let json = gltf.document.as_json();
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let position = primitive
+                .attributes
+                .get(&::gltf::json::validation::Checked::Valid(
+                    ::gltf::json::mesh::Semantic::Positions,
+                ));
+            if let Some(index) = position.filter(|i| i.value() >= json.accessors.len()) {
+                return Err(invalid(
+                    name,
+                    format!(
+                        "not a valid glTF 2.0 file: meshes[{m}].primitives[{p}] POSITION names \
+                         accessor {}, but there are {} accessors",
+                        index.value(),
+                        json.accessors.len()
+                    ),
+                ));
+            }
+        }
+    }
+    // Now the crate's own validation is safe to run (it parses again).
+    let gltf = ::gltf::Gltf::from_slice(bytes)
         .map_err(|e| invalid(name, format!("not a valid glTF 2.0 file: {e}")))?;
     let budget = MAX_MESH_BYTES.saturating_sub(bytes.len() as u64);
     let buffers = load_buffers(&gltf, name, base_dir, budget)?;

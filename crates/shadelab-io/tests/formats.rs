@@ -671,7 +671,7 @@ fn gltf_errors() {
         .json()
         .replace(r#""POSITION":0"#, r#""POSITION":9"#);
     let path = write(dir.path(), "no_accessor.gltf", json);
-    assert_invalid(load_gltf(&path), &path, "panicked");
+    assert_invalid(load_gltf(&path), &path, "names accessor 9");
 
     // byteLength larger than the data.
     let mut doc = tetra_doc(Some(&uri), one, "[0]");

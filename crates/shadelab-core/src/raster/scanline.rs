@@ -211,6 +211,24 @@ fn is_convex<const N: usize>(polygon: &[ScreenVertex<N>]) -> bool {
     direction_changes <= 2
 }
 
+/// Passes on the first fragment of each pixel and drops the rest.
+struct OncePerPixel<'a, S> {
+    drawn: Vec<u64>,
+    width: u32,
+    sink: &'a mut S,
+}
+
+impl<const N: usize, S: FragmentSink<N>> FragmentSink<N> for OncePerPixel<'_, S> {
+    fn fragment(&mut self, x: u32, y: u32, depth: f32, attrs: &[f32; N]) {
+        let bit = y as usize * self.width as usize + x as usize;
+        let (word, mask) = (bit / 64, 1u64 << (bit % 64));
+        if self.drawn[word] & mask == 0 {
+            self.drawn[word] |= mask;
+            self.sink.fragment(x, y, depth, attrs);
+        }
+    }
+}
+
 /// Fills a convex polygon, wound counter-clockwise as the viewer sees it,
 /// into a `width` × `height` image, sending each covered pixel to `sink`.
 ///
@@ -240,15 +258,53 @@ pub fn rasterize_polygon<const N: usize>(
                 ]
             })
         };
-        let apex = (0..n)
-            .find(|&a| fan(a).all(|t| signed_area_ccw(&t) >= 0))
-            .unwrap_or(0);
-        for triangle in fan(apex) {
-            rasterize_polygon(&triangle, width, height, interpolation, sink);
+        match (0..n).find(|&a| fan(a).all(|t| signed_area_ccw(&t) >= 0)) {
+            Some(apex) => {
+                for triangle in fan(apex) {
+                    rasterize_triangle(&triangle, width, height, interpolation, sink);
+                }
+            }
+            None => {
+                // No vertex sees all others: the polygon crosses itself (only
+                // extreme coordinates snapped this far from their true place
+                // do that). Fan triangles may then overlap; a pixel is still
+                // drawn at most once.
+                let mut once = OncePerPixel {
+                    drawn: vec![0; (width as usize * height as usize).div_ceil(64)],
+                    width,
+                    sink,
+                };
+                for triangle in fan(0) {
+                    rasterize_triangle(&triangle, width, height, interpolation, &mut once);
+                }
+            }
         }
         return;
     }
+    rasterize_convex(polygon, width, height, interpolation, sink);
+}
 
+/// A fan triangle: drawn when counter-clockwise, skipped otherwise.
+fn rasterize_triangle<const N: usize>(
+    triangle: &[ScreenVertex<N>; 3],
+    width: u32,
+    height: u32,
+    interpolation: Interpolation,
+    sink: &mut impl FragmentSink<N>,
+) {
+    if signed_area_ccw(triangle) > 0 {
+        rasterize_convex(triangle, width, height, interpolation, sink);
+    }
+}
+
+/// The scanline walk proper, for a convex counter-clockwise polygon.
+fn rasterize_convex<const N: usize>(
+    polygon: &[ScreenVertex<N>],
+    width: u32,
+    height: u32,
+    interpolation: Interpolation,
+    sink: &mut impl FragmentSink<N>,
+) {
     let image_rows = 0..i64::from(height);
     let clip_rows =
         |r: std::ops::Range<i64>| r.start.max(image_rows.start)..r.end.min(image_rows.end);
