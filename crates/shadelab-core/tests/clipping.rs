@@ -531,3 +531,85 @@ fn self_crossing_clipped_triangle_covers_each_pixel_once() {
     .unwrap();
     assert!(counts.iter().all(|&c| c <= 1), "a pixel covered twice");
 }
+
+/// Clipping keeps exactly the part of a polygon in front of the near plane.
+///
+/// Each corner of a random clip-space triangle carries its barycentric
+/// coordinates as attributes, so every vertex `clip_polygon` makes says where
+/// on the triangle it lies. The kept region, measured in barycentric space,
+/// must equal the triangle cut by the near plane `z + w ≥ 0`, whose area
+/// fraction has a closed form in the plane distances at the corners.
+mod near_plane {
+    use glam::Vec4;
+    use proptest::prelude::*;
+    use shadelab_core::{clip_polygon, ClipVertex};
+
+    /// Twice the signed area of a polygon in the (b1, b2) barycentric plane.
+    fn barycentric_area(polygon: &[ClipVertex<3>]) -> f64 {
+        let n = polygon.len();
+        (0..n)
+            .map(|i| {
+                let (a, b) = (&polygon[i].attrs, &polygon[(i + 1) % n].attrs);
+                f64::from(a[1]) * f64::from(b[2]) - f64::from(b[1]) * f64::from(a[2])
+            })
+            .sum()
+    }
+
+    /// The fraction of a triangle where a linear function with corner values
+    /// `d` is ≥ 0.
+    fn kept_fraction(d: [f64; 3]) -> f64 {
+        let inside: Vec<usize> = (0..3).filter(|&k| d[k] >= 0.0).collect();
+        match inside.len() {
+            3 => 1.0,
+            0 => 0.0,
+            1 => {
+                let i = inside[0];
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                d[i] * d[i] / ((d[i] - d[j]) * (d[i] - d[k]))
+            }
+            _ => {
+                let o = (0..3).find(|&k| d[k] < 0.0).unwrap();
+                let (j, k) = ((o + 1) % 3, (o + 2) % 3);
+                1.0 - d[o] * d[o] / ((d[o] - d[j]) * (d[o] - d[k]))
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 3000, failure_persistence: None, ..ProptestConfig::default() })]
+
+        #[test]
+        fn keeps_exactly_the_part_in_front(
+            corners in prop::array::uniform3((-1.0f32..1.0, -1.0f32..1.0, -3.0f32..1.0, 0.2f32..3.0)),
+        ) {
+            // x, y within the guard band and z ≤ w: only the near plane cuts.
+            let polygon: Vec<ClipVertex<3>> = corners
+                .iter()
+                .enumerate()
+                .map(|(k, &(x, y, z, w))| {
+                    let mut attrs = [0.0; 3];
+                    attrs[k] = 1.0;
+                    ClipVertex { clip: Vec4::new(x * w, y * w, z * w, w), attrs }
+                })
+                .collect();
+            let d = polygon.iter().map(|v| f64::from(v.clip.z + v.clip.w)).collect::<Vec<_>>();
+            let d = [d[0], d[1], d[2]];
+            // Skip near-degenerate cases where rounding decides the answer.
+            prop_assume!(d.iter().all(|v| v.abs() > 1e-3));
+            let (mut out, mut scratch) = (Vec::new(), Vec::new());
+            clip_polygon(&polygon, 1000.0, &mut out, &mut scratch);
+
+            for v in &out {
+                // Every vertex in front of (or on) the near plane…
+                prop_assert!(v.clip.z + v.clip.w >= -1e-5 * v.clip.w.abs().max(1.0), "{v:?} behind the near plane");
+                // …and on the original triangle.
+                let sum: f32 = v.attrs.iter().sum();
+                prop_assert!((sum - 1.0).abs() < 1e-5 && v.attrs.iter().all(|&b| b >= -1e-5), "{v:?} off the triangle");
+            }
+            let whole = barycentric_area(&polygon);
+            let kept = if out.is_empty() { 0.0 } else { barycentric_area(&out) / whole };
+            let expected = kept_fraction(d);
+            prop_assert!((kept - expected).abs() < 1e-4, "kept {kept}, expected {expected}, distances {d:?}");
+        }
+    }
+}
