@@ -50,6 +50,12 @@ fn plane_distance(plane: usize, guard: f32, p: Vec4) -> f32 {
 
 const PLANES: usize = 6;
 
+/// Whether a finite clip-space point is inside the view volume and guard
+/// band: a polygon of such points leaves [`clip_polygon`] unchanged.
+pub(crate) fn is_inside(p: Vec4, guard: f32) -> bool {
+    (0..PLANES).all(|plane| plane_distance(plane, guard, p) >= 0.0)
+}
+
 /// Moves an intersection exactly onto its plane. When both ends of an edge
 /// are far from the plane (coordinates near 1e30), the interpolated
 /// coordinate can miss the plane by far more than the whole guard band.
@@ -79,17 +85,8 @@ pub fn clip_polygon<const N: usize>(
     if polygon.iter().any(|v| !v.clip.is_finite()) {
         return;
     }
-    let mut outside_any = false;
-    for v in polygon {
-        for plane in 0..PLANES {
-            let d = plane_distance(plane, guard, v.clip);
-            if d < 0.0 {
-                outside_any = true;
-            }
-        }
-    }
     out.extend_from_slice(polygon);
-    if !outside_any {
+    if polygon.iter().all(|v| is_inside(v.clip, guard)) {
         return;
     }
     for plane in 0..PLANES {

@@ -60,6 +60,11 @@ impl Image {
         &self.pixels
     }
 
+    /// All pixels, row by row, for writing.
+    pub(crate) fn pixels_mut(&mut self) -> &mut [Rgb8] {
+        &mut self.pixels
+    }
+
     /// The pixels as packed RGB bytes, as PNG encoders take them.
     pub fn to_rgb_bytes(&self) -> Vec<u8> {
         self.pixels.iter().flat_map(|p| p.0).collect()

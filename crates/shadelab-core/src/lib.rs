@@ -18,6 +18,8 @@ mod models;
 mod normals;
 pub mod raster;
 mod render;
+mod simd;
+mod tiled;
 
 pub use camera::{Camera, CameraError};
 pub use clip::{clip_polygon, ClipVertex};
@@ -31,6 +33,7 @@ pub use normals::{
 };
 pub use raster::Interpolation;
 pub use render::{
-    coverage, render, RenderError, RenderOptions, RenderStats, Scene, Shading, MAX_IMAGE_PIXELS,
-    MAX_IMAGE_SIDE,
+    coverage, render, Polygons, Rasterizer, RenderError, RenderOptions, RenderStats, Renderer,
+    Scene, Shading, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
 };
+pub use simd::SimdLevel;

@@ -26,8 +26,10 @@ use crate::image::Image;
 use crate::lighting::{Light, Lighting, Material, Terms};
 use crate::mesh::{CornerNormals, Mesh};
 use crate::normals::face_normals;
-use crate::raster::scanline::rasterize_polygon;
+use crate::raster::scanline::{rasterize_fan, rasterize_polygon};
 use crate::raster::{signed_area_ccw, snap, FragmentSink, Interpolation, ScreenVertex};
+use crate::simd::SimdLevel;
+use crate::tiled::TiledRasterizer;
 
 /// Largest image side, in pixels.
 pub const MAX_IMAGE_SIDE: u32 = 16384;
@@ -69,6 +71,51 @@ impl Shading {
     }
 }
 
+/// Which rasterizer draws the frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Rasterizer {
+    /// The textbook scanline algorithm: the reference, one thread.
+    Scanline,
+    /// Edge functions over bands of rows, SIMD blocks, all threads.
+    #[default]
+    Tiled,
+}
+
+impl Rasterizer {
+    /// Both, reference first.
+    pub const ALL: [Rasterizer; 2] = [Rasterizer::Scanline, Rasterizer::Tiled];
+
+    /// The lower-case name used in files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rasterizer::Scanline => "scanline",
+            Rasterizer::Tiled => "tiled",
+        }
+    }
+}
+
+/// How polygons with more than three vertices are interpolated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Polygons {
+    /// As a fan of triangles from the first vertex, each interpolated as a
+    /// plane: what GPUs do. Both rasterizers draw this.
+    #[default]
+    Fans,
+    /// Whole, along edges and spans as the textbook does (scanline only):
+    /// Gouraud over a quad then depends on its orientation on screen.
+    Whole,
+}
+
+impl Polygons {
+    /// The lower-case name used in files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Polygons::Fans => "fans",
+            Polygons::Whole => "whole",
+        }
+    }
+}
+
 /// What to draw: a mesh with its vertex normals, a camera and the lighting.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -103,6 +150,10 @@ pub struct RenderOptions {
     pub gouraud_specular: bool,
     /// Perspective-correct or screen-linear attributes.
     pub interpolation: Interpolation,
+    /// Which rasterizer draws.
+    pub rasterizer: Rasterizer,
+    /// Polygons as triangle fans or whole.
+    pub polygons: Polygons,
 }
 
 impl Default for RenderOptions {
@@ -115,6 +166,8 @@ impl Default for RenderOptions {
             cull_backfaces: true,
             gouraud_specular: false,
             interpolation: Interpolation::Perspective,
+            rasterizer: Rasterizer::Tiled,
+            polygons: Polygons::Fans,
         }
     }
 }
@@ -145,6 +198,9 @@ pub enum RenderError {
     /// A light or material value is not a finite number.
     #[error("{0} is not a finite number")]
     NonFinite(&'static str),
+    /// The tiled rasterizer draws polygons as fans only.
+    #[error("the tiled rasterizer draws polygons as triangle fans; whole polygons need the scanline rasterizer")]
+    WholePolygonsNeedScanline,
 }
 
 /// What a frame cost and what it did.
@@ -164,21 +220,18 @@ pub struct RenderStats {
     pub fragments_shaded: u64,
     /// Evaluations of the reflection model.
     pub lighting_evaluations: u64,
+    /// Pixels where the model was drawn.
+    pub covered_pixels: u64,
 }
 
-/// Renders `scene` with the scanline rasterizer.
+/// Renders a frame: [`Renderer::render_into`] with a new renderer and image.
 ///
 /// # Errors
 /// [`RenderError`] when the options, camera, normals or lighting are invalid.
 pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderStats), RenderError> {
-    validate(scene, options)?;
-    let mut frame = Frame {
-        color: Image::filled(options.width, options.height, options.background),
-        depth: vec![1.0; options.width as usize * options.height as usize],
-        width: options.width,
-    };
-    let stats = draw(scene, options, &mut frame);
-    Ok((frame.color, stats))
+    let mut image = Image::filled(1, 1, options.background);
+    let stats = Renderer::new().render_into(scene, options, &mut image)?;
+    Ok((image, stats))
 }
 
 /// How many polygons cover each pixel, row by row, with no depth test: the
@@ -188,20 +241,118 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderSt
 /// # Errors
 /// As [`render`].
 pub fn coverage(scene: &Scene, options: &RenderOptions) -> Result<Vec<u32>, RenderError> {
-    validate(scene, options)?;
-    let mut counter = CoverageCounter {
-        counts: vec![0; options.width as usize * options.height as usize],
-        width: options.width,
-    };
-    let options = RenderOptions {
-        shading: Shading::Flat,
-        ..*options
-    };
-    draw(scene, &options, &mut counter);
-    Ok(counter.counts)
+    Renderer::new().coverage(scene, options)
+}
+
+/// Renders frames, keeping its working buffers from one frame to the next
+/// (the tiled rasterizer allocates nothing per frame once warmed up).
+///
+/// Work is spread over rayon's current thread pool; run it inside
+/// `ThreadPool::install` to choose the number of threads.
+#[derive(Debug)]
+pub struct Renderer {
+    tiled: TiledRasterizer,
+}
+
+impl Default for Renderer {
+    fn default() -> Renderer {
+        Renderer::new()
+    }
+}
+
+impl Renderer {
+    /// A renderer using the best SIMD level of this CPU.
+    pub fn new() -> Renderer {
+        Renderer::with_simd(SimdLevel::detect())
+    }
+
+    /// A renderer using `level` (or the portable path if the CPU lacks it).
+    pub fn with_simd(level: SimdLevel) -> Renderer {
+        Renderer {
+            tiled: TiledRasterizer::new(level),
+        }
+    }
+
+    /// The SIMD level the tiled rasterizer uses.
+    pub fn simd(&self) -> SimdLevel {
+        self.tiled.simd()
+    }
+
+    /// Renders `scene` into `image`, which is replaced by a new image when
+    /// its size is not the requested one.
+    ///
+    /// # Errors
+    /// [`RenderError`] when the options, camera, normals or lighting are invalid.
+    pub fn render_into(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        image: &mut Image,
+    ) -> Result<RenderStats, RenderError> {
+        validate(scene, options)?;
+        if image.width() != options.width || image.height() != options.height {
+            *image = Image::filled(options.width, options.height, options.background);
+        }
+        let lighting = lighting(scene);
+        Ok(match options.rasterizer {
+            Rasterizer::Tiled => self.tiled.render(scene, options, &lighting, image),
+            Rasterizer::Scanline => {
+                let mut frame = Frame {
+                    color: std::mem::replace(image, Image::filled(1, 1, options.background)),
+                    depth: vec![1.0; options.width as usize * options.height as usize],
+                    width: options.width,
+                };
+                frame.color.pixels_mut().fill(options.background);
+                let mut stats = draw(scene, options, &lighting, &mut frame);
+                stats.covered_pixels = frame.depth.iter().filter(|&&d| d < 1.0).count() as u64;
+                *image = frame.color;
+                stats
+            }
+        })
+    }
+
+    /// How many polygons cover each pixel, row by row, with no depth test.
+    ///
+    /// # Errors
+    /// As [`Renderer::render_into`].
+    pub fn coverage(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+    ) -> Result<Vec<u32>, RenderError> {
+        validate(scene, options)?;
+        let lighting = lighting(scene);
+        Ok(match options.rasterizer {
+            Rasterizer::Tiled => self.tiled.coverage(scene, options, &lighting),
+            Rasterizer::Scanline => {
+                let mut counter = CoverageCounter {
+                    counts: vec![0; options.width as usize * options.height as usize],
+                    width: options.width,
+                };
+                let options = RenderOptions {
+                    shading: Shading::Flat,
+                    ..*options
+                };
+                draw(scene, &options, &lighting, &mut counter);
+                counter.counts
+            }
+        })
+    }
+}
+
+fn lighting(scene: &Scene) -> Lighting {
+    Lighting {
+        ambient: scene.ambient,
+        lights: scene.lights.clone(),
+        material: scene.material,
+        eye: scene.camera.eye,
+    }
 }
 
 fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
+    if options.rasterizer == Rasterizer::Tiled && options.polygons == Polygons::Whole {
+        return Err(RenderError::WholePolygonsNeedScanline);
+    }
     let (w, h) = (options.width, options.height);
     if w == 0
         || h == 0
@@ -460,19 +611,19 @@ pub(crate) fn to_window<const N: usize>(
     }
 }
 
-fn draw(scene: &Scene, options: &RenderOptions, target: &mut impl Target) -> RenderStats {
+fn draw(
+    scene: &Scene,
+    options: &RenderOptions,
+    lighting: &Lighting,
+    target: &mut impl Target,
+) -> RenderStats {
     let aspect = options.width as f32 / options.height as f32;
     let view_projection = scene.camera.projection(aspect) * scene.camera.view();
     let refs = SceneRefs {
         mesh: &scene.mesh,
         normals: &scene.normals,
         faces: face_normals(&scene.mesh),
-        lighting: Lighting {
-            ambient: scene.ambient,
-            lights: scene.lights.clone(),
-            material: scene.material,
-            eye: scene.camera.eye,
-        },
+        lighting: lighting.clone(),
     };
     match options.shading {
         Shading::Flat => {
@@ -572,7 +723,14 @@ fn draw_with<const N: usize, M: Method<N>, T: Target>(
             target: &mut *target,
             shaded: 0,
         };
-        rasterize_polygon(&window, width, height, options.interpolation, &mut sink);
+        match options.polygons {
+            Polygons::Fans => {
+                rasterize_fan(&window, width, height, options.interpolation, &mut sink)
+            }
+            Polygons::Whole => {
+                rasterize_polygon(&window, width, height, options.interpolation, &mut sink)
+            }
+        }
         shaded += sink.shaded;
     }
     stats.fragments_shaded = shaded;

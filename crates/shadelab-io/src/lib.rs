@@ -16,8 +16,8 @@ pub use ply::{load_ply, parse_ply};
 pub use png::{encode_png, read_png, write_png};
 pub use scene::{
     model_path, AmbientSection, CameraSection, InterpolationName, LightKindName, LightSection,
-    MaterialSection, ModelSection, NormalsChoice, RenderSection, SceneError, SceneFile,
-    ShadingName,
+    MaterialSection, ModelSection, NormalsChoice, PolygonsName, RasterizerName, RenderSection,
+    SceneError, SceneFile, ShadingName,
 };
 pub use stl::{load_stl, parse_stl};
 

@@ -11,8 +11,8 @@ use glam::Vec3;
 use serde::Deserialize;
 use shadelab_core::{
     builtin_model, builtin_model_info, vertex_normals, Camera, Interpolation, Light, LightKind,
-    Material, Mesh, NormalWeighting, RenderOptions, Rgb, Rgb8, Scene, Shading, MAX_IMAGE_PIXELS,
-    MAX_IMAGE_SIDE,
+    Material, Mesh, NormalWeighting, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8, Scene,
+    Shading, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
 };
 
 use crate::{load_mesh, LoadError};
@@ -174,6 +174,10 @@ pub struct RenderSection {
     pub gouraud_specular: Option<bool>,
     /// perspective | screen; default perspective.
     pub interpolation: Option<InterpolationName>,
+    /// scanline | tiled; default tiled (scanline when `polygons = "whole"`).
+    pub rasterizer: Option<RasterizerName>,
+    /// fans | whole; default fans.
+    pub polygons: Option<PolygonsName>,
     /// Degrees to orbit the camera about its up axis; default 0.
     pub yaw: Option<f32>,
     /// Degrees to orbit the camera towards its up axis; default 0.
@@ -210,6 +214,35 @@ pub enum InterpolationName {
     Perspective,
     /// Screen-space linear.
     Screen,
+}
+
+/// A rasterizer's name in a file.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum RasterizerName {
+    /// The scanline reference.
+    Scanline,
+    /// The tiled SIMD rasterizer.
+    Tiled,
+}
+
+impl From<RasterizerName> for Rasterizer {
+    fn from(r: RasterizerName) -> Rasterizer {
+        match r {
+            RasterizerName::Scanline => Rasterizer::Scanline,
+            RasterizerName::Tiled => Rasterizer::Tiled,
+        }
+    }
+}
+
+/// How polygons are drawn, by name in a file.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum PolygonsName {
+    /// As triangle fans.
+    Fans,
+    /// Whole (scanline only).
+    Whole,
 }
 
 /// Why a scene could not be read or used.
@@ -310,6 +343,22 @@ impl SceneFile {
             interpolation: match r.interpolation {
                 Some(InterpolationName::Screen) => Interpolation::Screen,
                 _ => Interpolation::Perspective,
+            },
+            polygons: match r.polygons {
+                Some(PolygonsName::Whole) => Polygons::Whole,
+                _ => Polygons::Fans,
+            },
+            rasterizer: match (r.rasterizer, r.polygons) {
+                (Some(RasterizerName::Tiled), Some(PolygonsName::Whole)) => {
+                    return Err(value_error(
+                        "render.polygons",
+                        "\"whole\" needs rasterizer = \"scanline\"; the tiled rasterizer draws fans"
+                            .to_string(),
+                    ));
+                }
+                (Some(name), _) => name.into(),
+                (None, Some(PolygonsName::Whole)) => Rasterizer::Scanline,
+                (None, _) => Rasterizer::Tiled,
             },
         };
 

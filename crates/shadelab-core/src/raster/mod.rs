@@ -63,3 +63,90 @@ pub fn signed_area_ccw<const N: usize>(polygon: &[ScreenVertex<N>]) -> i128 {
     }
     -sum
 }
+
+/// Whether a counter-clockwise polygon is convex and winds once.
+pub(crate) fn is_convex<const N: usize>(polygon: &[ScreenVertex<N>]) -> bool {
+    let n = polygon.len();
+    if n == 3 {
+        return true;
+    }
+    let mut direction_changes = 0;
+    let mut last_dy = 0i64;
+    for i in 0..n {
+        let a = &polygon[i];
+        let b = &polygon[(i + 1) % n];
+        let c = &polygon[(i + 2) % n];
+        let turn =
+            (b.x - a.x) as i128 * (c.y - b.y) as i128 - (b.y - a.y) as i128 * (c.x - b.x) as i128;
+        // Window y points down, so a counter-clockwise turn is negative here.
+        if turn > 0 {
+            return false;
+        }
+        let dy = (b.y - a.y).signum();
+        if dy != 0 {
+            if last_dy != 0 && dy != last_dy {
+                direction_changes += 1;
+            }
+            last_dy = dy;
+        }
+    }
+    // Close the cycle: compare the last non-zero direction with the first.
+    if let Some(first) = (0..n)
+        .map(|i| (polygon[(i + 1) % n].y - polygon[i].y).signum())
+        .find(|&d| d != 0)
+    {
+        if first != last_dy {
+            direction_changes += 1;
+        }
+    }
+    direction_changes <= 2
+}
+
+/// How a polygon is split into triangles: a fan from one of its vertices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Fan {
+    /// The vertex all triangles share.
+    pub apex: usize,
+    /// No vertex sees all others (a polygon crossing itself, which only
+    /// clipping of absurd coordinates produces): the fan's triangles overlap,
+    /// and each pixel must be drawn once only.
+    pub once_per_pixel: bool,
+}
+
+/// The fan both rasterizers use for a counter-clockwise polygon: from the
+/// first vertex whose fan has no clockwise triangle, which is vertex 0 for
+/// every convex polygon.
+pub fn fan<const N: usize>(polygon: &[ScreenVertex<N>]) -> Fan {
+    let n = polygon.len();
+    let fan = |apex: usize| Fan {
+        apex,
+        once_per_pixel: false,
+    };
+    if n <= 3 {
+        return fan(0);
+    }
+    (0..n)
+        .map(fan)
+        .find(|f| f.triangles(polygon).all(|t| signed_area_ccw(&t) >= 0))
+        .unwrap_or(Fan {
+            apex: 0,
+            once_per_pixel: true,
+        })
+}
+
+impl Fan {
+    /// The fan's triangles, in order, counter-clockwise like the polygon.
+    pub fn triangles<'a, const N: usize>(
+        self,
+        polygon: &'a [ScreenVertex<N>],
+    ) -> impl Iterator<Item = [ScreenVertex<N>; 3]> + 'a {
+        let n = polygon.len();
+        (1..n.saturating_sub(1)).map(move |k| {
+            [
+                polygon[self.apex],
+                polygon[(self.apex + k) % n],
+                polygon[(self.apex + k + 1) % n],
+            ]
+        })
+    }
+}

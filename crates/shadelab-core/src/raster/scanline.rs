@@ -27,7 +27,8 @@
 //! bound them on the right.
 
 use super::{
-    signed_area_ccw, FragmentSink, Interpolation, ScreenVertex, SUBPIXEL_HALF, SUBPIXEL_ONE,
+    fan, is_convex, signed_area_ccw, FragmentSink, Interpolation, ScreenVertex, SUBPIXEL_HALF,
+    SUBPIXEL_ONE,
 };
 
 /// Depth, 1/w and attributes, the quantities stepped across a polygon.
@@ -173,44 +174,6 @@ fn rows_between(top: i64, bottom: i64) -> std::ops::Range<i64> {
     first(top)..first(bottom)
 }
 
-/// Whether a counter-clockwise polygon is convex and winds once.
-fn is_convex<const N: usize>(polygon: &[ScreenVertex<N>]) -> bool {
-    let n = polygon.len();
-    if n == 3 {
-        return true;
-    }
-    let mut direction_changes = 0;
-    let mut last_dy = 0i64;
-    for i in 0..n {
-        let a = &polygon[i];
-        let b = &polygon[(i + 1) % n];
-        let c = &polygon[(i + 2) % n];
-        let turn =
-            (b.x - a.x) as i128 * (c.y - b.y) as i128 - (b.y - a.y) as i128 * (c.x - b.x) as i128;
-        // Window y points down, so a counter-clockwise turn is negative here.
-        if turn > 0 {
-            return false;
-        }
-        let dy = (b.y - a.y).signum();
-        if dy != 0 {
-            if last_dy != 0 && dy != last_dy {
-                direction_changes += 1;
-            }
-            last_dy = dy;
-        }
-    }
-    // Close the cycle: compare the last non-zero direction with the first.
-    if let Some(first) = (0..n)
-        .map(|i| (polygon[(i + 1) % n].y - polygon[i].y).signum())
-        .find(|&d| d != 0)
-    {
-        if first != last_dy {
-            direction_changes += 1;
-        }
-    }
-    direction_changes <= 2
-}
-
 /// Passes on the first fragment of each pixel and drops the rest.
 struct OncePerPixel<'a, S> {
     drawn: Vec<u64>,
@@ -244,44 +207,39 @@ pub fn rasterize_polygon<const N: usize>(
         return;
     }
     if !is_convex(polygon) {
-        // Fan from a vertex that sees all the others (no fan triangle is
-        // clockwise), so the fan covers the polygon exactly: a clockwise
-        // triangle is skipped, so a fan from a vertex next to a dent would
-        // cover the dent too (and overlap the neighbour across it).
-        let n = polygon.len();
-        let fan = |apex: usize| {
-            (1..n - 1).map(move |k| {
-                [
-                    polygon[apex],
-                    polygon[(apex + k) % n],
-                    polygon[(apex + k + 1) % n],
-                ]
-            })
-        };
-        match (0..n).find(|&a| fan(a).all(|t| signed_area_ccw(&t) >= 0)) {
-            Some(apex) => {
-                for triangle in fan(apex) {
-                    rasterize_triangle(&triangle, width, height, interpolation, sink);
-                }
-            }
-            None => {
-                // No vertex sees all others: the polygon crosses itself (only
-                // extreme coordinates snapped this far from their true place
-                // do that). Fan triangles may then overlap; a pixel is still
-                // drawn at most once.
-                let mut once = OncePerPixel {
-                    drawn: vec![0; (width as usize * height as usize).div_ceil(64)],
-                    width,
-                    sink,
-                };
-                for triangle in fan(0) {
-                    rasterize_triangle(&triangle, width, height, interpolation, &mut once);
-                }
-            }
-        }
+        rasterize_fan(polygon, width, height, interpolation, sink);
         return;
     }
     rasterize_convex(polygon, width, height, interpolation, sink);
+}
+
+/// Rasterizes a polygon as the triangles of its [`fan`], the way the tiled
+/// rasterizer draws every polygon: per-triangle (planar) interpolation.
+pub fn rasterize_fan<const N: usize>(
+    polygon: &[ScreenVertex<N>],
+    width: u32,
+    height: u32,
+    interpolation: Interpolation,
+    sink: &mut impl FragmentSink<N>,
+) {
+    if polygon.len() < 3 || signed_area_ccw(polygon) <= 0 {
+        return;
+    }
+    let fan = fan(polygon);
+    if fan.once_per_pixel {
+        let mut once = OncePerPixel {
+            drawn: vec![0; (width as usize * height as usize).div_ceil(64)],
+            width,
+            sink,
+        };
+        for triangle in fan.triangles(polygon) {
+            rasterize_triangle(&triangle, width, height, interpolation, &mut once);
+        }
+    } else {
+        for triangle in fan.triangles(polygon) {
+            rasterize_triangle(&triangle, width, height, interpolation, sink);
+        }
+    }
 }
 
 /// A fan triangle: drawn when counter-clockwise, skipped otherwise.

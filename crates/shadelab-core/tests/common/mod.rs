@@ -13,8 +13,8 @@ use std::path::PathBuf;
 
 use glam::{DVec3, Vec3};
 use shadelab_core::{
-    Camera, CornerNormals, Image, Interpolation, Light, LightKind, Material, Mesh, RenderOptions,
-    Rgb, Rgb8, Scene, Shading,
+    Camera, CornerNormals, Image, Interpolation, Light, LightKind, Material, Mesh, Polygons,
+    Rasterizer, RenderOptions, Rgb, Rgb8, Scene, Shading,
 };
 
 /// Snapped window units per pixel (1/256 pixel).
@@ -323,6 +323,19 @@ pub fn options(width: u32, height: u32, shading: Shading) -> RenderOptions {
         cull_backfaces: true,
         gouraud_specular: false,
         interpolation: Interpolation::Perspective,
+        rasterizer: rasterizer_under_test(),
+        polygons: Polygons::Fans,
+    }
+}
+
+/// The rasterizer these tests check: the default (tiled) one, or the one
+/// named by `SHADELAB_TEST_RASTERIZER` (`scanline` or `tiled`), so that CI
+/// runs the whole reference suite against both.
+pub fn rasterizer_under_test() -> Rasterizer {
+    match std::env::var("SHADELAB_TEST_RASTERIZER").as_deref() {
+        Ok("scanline") => Rasterizer::Scanline,
+        Ok("tiled") | Err(_) => Rasterizer::Tiled,
+        Ok(other) => panic!("SHADELAB_TEST_RASTERIZER={other}: expected scanline or tiled"),
     }
 }
 

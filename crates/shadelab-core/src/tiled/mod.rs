@@ -1,0 +1,608 @@
+//! The fast rasterizer: per-vertex work once, triangle setup in parallel
+//! chunks with per-chunk binning into bands of rows, then bands rasterized
+//! in parallel with SIMD blocks of 8 pixels.
+//!
+//! What must hold, and why it is built this way:
+//!
+//! * **The same pixels as the scanline reference.** Every polygon goes
+//!   through the same clipping ([`crate::clip_polygon`]), the same viewport
+//!   transform and snapping ([`crate::render`]'s `to_window`), the same facing
+//!   decision and the same [`crate::raster::fan`] as the scanline rasterizer
+//!   drawing fans, so both see identical snapped triangles; coverage is then
+//!   exact integer arithmetic in both (see `setup.rs`). Colours differ only
+//!   by f32 rounding: within 1/255, checked by the equivalence tests.
+//! * **Per-vertex work once per vertex.** Positions are transformed and
+//!   snapped once each; a polygon whose vertices are all inside the view
+//!   volume and guard band (nearly all of them) skips clipping, because
+//!   clipping would return it unchanged. Gouraud lights each distinct
+//!   (position, normal) pair once.
+//! * **Order is kept.** Chunks of consecutive polygons are set up in
+//!   parallel, each binning into its own per-band lists; a band walks the
+//!   chunks in order, so triangles meet the depth test in submission order,
+//!   as with one thread, and the image does not depend on the thread count.
+//! * **No allocation per frame in steady state.** All buffers live in
+//!   [`TiledRasterizer`] and are cleared, not dropped, between frames.
+
+mod band;
+mod setup;
+
+use std::collections::HashMap;
+
+use glam::{Vec3, Vec4};
+use rayon::prelude::*;
+
+use self::band::{
+    band_rows, Band, FlatShader, GouraudShader, Pass, PhongShader, Shader, MAX_ATTRS,
+};
+use self::setup::{Plane, Triangle, BAND_ROWS};
+use crate::clip::{clip_polygon, is_inside, ClipVertex};
+use crate::color::Rgb8;
+use crate::image::Image;
+use crate::lighting::{Lighting, Terms};
+use crate::normals::face_normal;
+use crate::raster::{fan, signed_area_ccw, ScreenVertex};
+use crate::render::{guard_band, to_window, RenderOptions, RenderStats, Scene, Shading};
+use crate::simd::{dispatch, Kernel, SimdLevel};
+
+/// The tiled rasterizer's buffers, reused from frame to frame.
+#[derive(Debug)]
+pub(crate) struct TiledRasterizer {
+    simd: SimdLevel,
+    /// Per mesh position: clip-space position, window position, inside flag.
+    projected: Vec<Projected>,
+    vertices: VertexTable,
+    /// Gouraud colours per distinct vertex, front and (culling off) back.
+    lit: Vec<[f32; 3]>,
+    lit_back: Vec<[f32; 3]>,
+    chunks: Vec<Chunk>,
+    bands: Vec<Band>,
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Projected {
+    clip: Vec4,
+    window: ScreenVertex<0>,
+    inside: bool,
+}
+
+impl Default for ScreenVertex<0> {
+    fn default() -> Self {
+        ScreenVertex {
+            x: 0,
+            y: 0,
+            depth: 0.0,
+            inv_w: 0.0,
+            attrs: [],
+        }
+    }
+}
+
+/// Consecutive polygons set up by one task, with their per-band bins.
+#[derive(Debug, Default)]
+struct Chunk {
+    triangles: Vec<Triangle>,
+    planes: Vec<Plane>,
+    /// Per band, indices into `triangles`, in submission order.
+    bins: Vec<Vec<u32>>,
+    stats: RenderStats,
+    points: Vec<Vec3>,
+    input: Vec<ClipVertex<MAX_ATTRS>>,
+    clipped: Vec<ClipVertex<MAX_ATTRS>>,
+    scratch: Vec<ClipVertex<MAX_ATTRS>>,
+    window: Vec<ScreenVertex<MAX_ATTRS>>,
+}
+
+/// Distinct (position, normal) pairs of a mesh, rebuilt only when the
+/// mesh's corner lists change.
+#[derive(Debug, Default)]
+struct VertexTable {
+    key_positions: Vec<u32>,
+    key_normals: Vec<u32>,
+    /// Per corner, its vertex.
+    corner_vertex: Vec<u32>,
+    /// Per vertex, its position and normal index (`u32::MAX` when unused).
+    position: Vec<u32>,
+    normal: Vec<u32>,
+    used: u64,
+}
+
+impl VertexTable {
+    fn update(&mut self, corners: &[u32], corner_normals: &[u32], normal_count: usize) {
+        if self.key_positions == corners && self.key_normals == corner_normals {
+            return;
+        }
+        self.key_positions.clear();
+        self.key_positions.extend_from_slice(corners);
+        self.key_normals.clear();
+        self.key_normals.extend_from_slice(corner_normals);
+        // A vertex per normal index, owned by the first position using it;
+        // a normal shared by several positions gets extra vertices.
+        self.position.clear();
+        self.position.resize(normal_count, u32::MAX);
+        self.normal.clear();
+        self.normal.extend(0..normal_count as u32);
+        self.corner_vertex.clear();
+        let mut extra: HashMap<(u32, u32), u32> = HashMap::new();
+        for (&p, &n) in corners.iter().zip(corner_normals) {
+            let owner = &mut self.position[n as usize];
+            let id = if *owner == u32::MAX || *owner == p {
+                *owner = p;
+                n
+            } else {
+                *extra.entry((p, n)).or_insert_with(|| {
+                    self.normal.push(n);
+                    (self.normal.len() - 1) as u32
+                })
+            };
+            self.corner_vertex.push(id);
+        }
+        self.position.resize(self.normal.len(), u32::MAX);
+        for (&(p, _), &id) in &extra {
+            self.position[id as usize] = p;
+        }
+        self.used = self.position.iter().filter(|&&p| p != u32::MAX).count() as u64;
+    }
+}
+
+/// What setup needs to know about the frame.
+struct Frame<'a> {
+    scene: &'a Scene,
+    options: &'a RenderOptions,
+    lighting: &'a Lighting,
+    projected: &'a [Projected],
+    corner_vertex: &'a [u32],
+    lit: &'a [[f32; 3]],
+    lit_back: &'a [[f32; 3]],
+    guard: f32,
+    bands: usize,
+}
+
+impl Frame<'_> {
+    /// The attributes the shading method interpolates, at a corner.
+    fn corner_attrs(&self, corner: usize, back: bool) -> [f32; MAX_ATTRS] {
+        match self.options.shading {
+            Shading::Flat => [0.0; MAX_ATTRS],
+            Shading::Gouraud => {
+                let v = self.corner_vertex[corner] as usize;
+                let [r, g, b] = if back { self.lit_back[v] } else { self.lit[v] };
+                [r, g, b, 0.0, 0.0, 0.0]
+            }
+            Shading::Phong => {
+                let normals = &self.scene.normals;
+                let n = normals.normals[normals.corner[corner] as usize];
+                let p = self.scene.mesh.positions()[self.scene.mesh.corners()[corner] as usize];
+                [n.x, n.y, n.z, p.x, p.y, p.z]
+            }
+        }
+    }
+
+    fn attr_count(&self) -> usize {
+        match self.options.shading {
+            Shading::Flat => 0,
+            Shading::Gouraud => 3,
+            Shading::Phong => 6,
+        }
+    }
+}
+
+impl Chunk {
+    /// The polygon's window-space vertices, clipped, with the attributes of
+    /// its front (or back) side, as the scanline pipeline computes them.
+    fn project(&mut self, frame: &Frame<'_>, face: usize, back: bool) {
+        let mesh = &frame.scene.mesh;
+        let (width, height) = (frame.options.width, frame.options.height);
+        let range = mesh.corner_range(face);
+        self.window.clear();
+        let inside = mesh.corners()[range.clone()]
+            .iter()
+            .all(|&p| frame.projected[p as usize].inside);
+        if inside {
+            for c in range {
+                let w = frame.projected[mesh.corners()[c] as usize].window;
+                self.window.push(ScreenVertex {
+                    x: w.x,
+                    y: w.y,
+                    depth: w.depth,
+                    inv_w: w.inv_w,
+                    attrs: frame.corner_attrs(c, back),
+                });
+            }
+            return;
+        }
+        self.input.clear();
+        for c in range {
+            self.input.push(ClipVertex {
+                clip: frame.projected[mesh.corners()[c] as usize].clip,
+                attrs: frame.corner_attrs(c, back),
+            });
+        }
+        clip_polygon(
+            &self.input,
+            frame.guard,
+            &mut self.clipped,
+            &mut self.scratch,
+        );
+        self.window
+            .extend(self.clipped.iter().map(|v| to_window(v, width, height)));
+    }
+
+    /// Sets up polygons `faces` and bins their triangles.
+    fn setup(&mut self, frame: &Frame<'_>, faces: std::ops::Range<usize>) {
+        self.triangles.clear();
+        self.planes.clear();
+        self.bins.resize_with(frame.bands, Vec::new);
+        self.bins.truncate(frame.bands);
+        self.bins.iter_mut().for_each(Vec::clear);
+        self.stats = RenderStats::default();
+        let options = frame.options;
+        let mesh = &frame.scene.mesh;
+        let attrs = frame.attr_count();
+        for face in faces {
+            self.points.clear();
+            self.points.extend(
+                mesh.polygon(face)
+                    .iter()
+                    .map(|&i| mesh.positions()[i as usize]),
+            );
+            let Some(normal) = face_normal(&self.points) else {
+                self.stats.degenerate += 1;
+                continue;
+            };
+            self.project(frame, face, false);
+            let area = signed_area_ccw(&self.window);
+            if self.window.len() < 3 || area == 0 {
+                self.stats.invisible += 1;
+                continue;
+            }
+            let back = area < 0;
+            if back {
+                if options.cull_backfaces {
+                    self.stats.culled += 1;
+                    continue;
+                }
+                self.project(frame, face, true);
+                self.window.reverse();
+            }
+            self.stats.rasterized += 1;
+            let color = if options.shading == Shading::Flat {
+                self.stats.lighting_evaluations += 1;
+                let centroid = self.points.iter().sum::<Vec3>() / self.points.len() as f32;
+                let normal = if back { -normal } else { normal };
+                let Rgb8([r, g, b]) =
+                    Rgb8::from_rgb(frame.lighting.eval(centroid, normal, Terms::Full));
+                u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16
+            } else {
+                0
+            };
+            let fan = fan(&self.window);
+            let once = if fan.once_per_pixel {
+                face as u32 + 1
+            } else {
+                0
+            };
+            for triangle in fan.triangles(&self.window) {
+                if signed_area_ccw(&triangle) <= 0 {
+                    continue;
+                }
+                let Some(mut t) = Triangle::new(
+                    &triangle,
+                    attrs,
+                    options.width,
+                    options.height,
+                    options.interpolation,
+                    &mut self.planes,
+                ) else {
+                    continue;
+                };
+                t.color = color;
+                t.flip = if back { -1.0 } else { 1.0 };
+                t.once = once;
+                let index = self.triangles.len() as u32;
+                for band in t.bands() {
+                    self.bins[band].push(index);
+                }
+                self.triangles.push(t);
+            }
+        }
+    }
+}
+
+/// One band's work, compiled per SIMD level.
+struct BandKernel<'a, S> {
+    band: &'a mut Band,
+    index: usize,
+    chunks: &'a [Chunk],
+    shader: &'a S,
+    options: &'a RenderOptions,
+    pass: Pass,
+}
+
+impl<S: Shader> Kernel for BandKernel<'_, S> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self) {
+        let o = self.options;
+        let (y0, y1) = band_rows(self.index, o.height);
+        let Rgb8([r, g, b]) = o.background;
+        let background = i32::from(r) | i32::from(g) << 8 | i32::from(b) << 16;
+        self.band.begin(o.width, y1 - y0, background, self.pass);
+        let stride = 2 + S::ATTRS;
+        for chunk in self.chunks {
+            for &t in &chunk.bins[self.index] {
+                let t = t as usize;
+                self.band.draw(
+                    &chunk.triangles[t],
+                    &chunk.planes[t * stride..(t + 1) * stride],
+                    self.shader,
+                    o.interpolation,
+                    y0,
+                    y1,
+                    o.width,
+                    self.pass,
+                );
+            }
+        }
+    }
+}
+
+impl TiledRasterizer {
+    pub fn new(simd: SimdLevel) -> TiledRasterizer {
+        TiledRasterizer {
+            simd: if simd.is_supported() {
+                simd
+            } else {
+                SimdLevel::Portable
+            },
+            projected: Vec::new(),
+            vertices: VertexTable::default(),
+            lit: Vec::new(),
+            lit_back: Vec::new(),
+            chunks: Vec::new(),
+            bands: Vec::new(),
+        }
+    }
+
+    pub fn simd(&self) -> SimdLevel {
+        self.simd
+    }
+
+    /// Draws a validated scene into `image` (already of the right size).
+    pub fn render(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        lighting: &Lighting,
+        image: &mut Image,
+    ) -> RenderStats {
+        let mut stats = self.geometry(scene, options, lighting);
+        let width = options.width as usize;
+        let (chunks, simd) = (&self.chunks, self.simd);
+        let pixels = image
+            .pixels_mut()
+            .par_chunks_mut(width * BAND_ROWS as usize);
+        let run = |shader: &(dyn Fn(&mut Band, usize) + Sync)| {
+            pixels
+                .zip(self.bands.par_iter_mut())
+                .enumerate()
+                .for_each(|(index, (out, band))| {
+                    shader(band, index);
+                    band.finish(out, options.width);
+                });
+        };
+        match options.shading {
+            Shading::Flat => run(&|band, index| {
+                band_pass(band, index, chunks, &FlatShader, options, Pass::Shade, simd)
+            }),
+            Shading::Gouraud => run(&|band, index| {
+                band_pass(
+                    band,
+                    index,
+                    chunks,
+                    &GouraudShader,
+                    options,
+                    Pass::Shade,
+                    simd,
+                )
+            }),
+            Shading::Phong => {
+                let shader = PhongShader::new(lighting);
+                run(&|band, index| {
+                    band_pass(band, index, chunks, &shader, options, Pass::Shade, simd)
+                })
+            }
+        }
+        for band in &self.bands {
+            stats.fragments_shaded += band.fragments;
+            stats.covered_pixels += band.covered;
+        }
+        if options.shading == Shading::Phong {
+            stats.lighting_evaluations = stats.fragments_shaded;
+        }
+        stats
+    }
+
+    /// How many triangles cover each pixel, with no depth test.
+    pub fn coverage(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        lighting: &Lighting,
+    ) -> Vec<u32> {
+        let options = RenderOptions {
+            shading: Shading::Flat,
+            ..*options
+        };
+        self.geometry(scene, &options, lighting);
+        let width = options.width as usize;
+        let mut counts = vec![0u32; width * options.height as usize];
+        let (chunks, simd) = (&self.chunks, self.simd);
+        counts
+            .par_chunks_mut(width * BAND_ROWS as usize)
+            .zip(self.bands.par_iter_mut())
+            .enumerate()
+            .for_each(|(index, (out, band))| {
+                band_pass(
+                    band,
+                    index,
+                    chunks,
+                    &FlatShader,
+                    &options,
+                    Pass::Count,
+                    simd,
+                );
+                band.finish_counts(out, options.width);
+            });
+        counts
+    }
+
+    /// Vertex stage, then setup and binning; leaves the bins in `self.chunks`.
+    fn geometry(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        lighting: &Lighting,
+    ) -> RenderStats {
+        let (width, height) = (options.width, options.height);
+        let aspect = width as f32 / height as f32;
+        let view_projection = scene.camera.projection(aspect) * scene.camera.view();
+        let guard = guard_band(width, height);
+        let mesh = &scene.mesh;
+
+        let positions = mesh.positions();
+        self.projected.resize(positions.len(), Projected::default());
+        self.projected
+            .par_chunks_mut(4096)
+            .zip(positions.par_chunks(4096))
+            .for_each(|(out, points)| {
+                for (o, p) in out.iter_mut().zip(points) {
+                    let clip = view_projection * p.extend(1.0);
+                    let inside = clip.is_finite() && is_inside(clip, guard);
+                    let window = if inside {
+                        to_window(&ClipVertex { clip, attrs: [] }, width, height)
+                    } else {
+                        ScreenVertex::default()
+                    };
+                    *o = Projected {
+                        clip,
+                        window,
+                        inside,
+                    };
+                }
+            });
+
+        let mut evaluations = 0;
+        if options.shading == Shading::Gouraud {
+            evaluations = self.light_vertices(scene, options, lighting);
+        }
+
+        let bands = height.div_ceil(BAND_ROWS) as usize;
+        self.bands.resize_with(bands, Band::default);
+        self.bands.truncate(bands);
+        let chunk_count = (rayon::current_num_threads() * 2).max(1);
+        self.chunks.resize_with(chunk_count, Chunk::default);
+        self.chunks.truncate(chunk_count);
+        let frame = Frame {
+            scene,
+            options,
+            lighting,
+            projected: &self.projected,
+            corner_vertex: &self.vertices.corner_vertex,
+            lit: &self.lit,
+            lit_back: &self.lit_back,
+            guard,
+            bands,
+        };
+        let polygons = mesh.polygon_count();
+        self.chunks
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(i, chunk)| {
+                let start = polygons * i / chunk_count;
+                let end = polygons * (i + 1) / chunk_count;
+                chunk.setup(&frame, start..end);
+            });
+
+        let mut stats = RenderStats {
+            polygons: polygons as u64,
+            lighting_evaluations: evaluations,
+            ..RenderStats::default()
+        };
+        for chunk in &self.chunks {
+            let s = &chunk.stats;
+            stats.degenerate += s.degenerate;
+            stats.invisible += s.invisible;
+            stats.culled += s.culled;
+            stats.rasterized += s.rasterized;
+            stats.lighting_evaluations += s.lighting_evaluations;
+        }
+        stats
+    }
+
+    /// Gouraud's per-vertex lighting; returns the number of evaluations.
+    fn light_vertices(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        lighting: &Lighting,
+    ) -> u64 {
+        let normals = &scene.normals;
+        self.vertices
+            .update(scene.mesh.corners(), &normals.corner, normals.normals.len());
+        let terms = if options.gouraud_specular {
+            Terms::Full
+        } else {
+            Terms::AmbientDiffuse
+        };
+        let table = &self.vertices;
+        let positions = scene.mesh.positions();
+        let light = |out: &mut Vec<[f32; 3]>, sign: f32| {
+            out.resize(table.position.len(), [0.0; 3]);
+            out.par_chunks_mut(1024)
+                .enumerate()
+                .for_each(|(k, colors)| {
+                    for (i, color) in colors.iter_mut().enumerate() {
+                        let v = k * 1024 + i;
+                        let p = table.position[v];
+                        if p != u32::MAX {
+                            let n = normals.normals[table.normal[v] as usize] * sign;
+                            *color = lighting
+                                .eval(positions[p as usize], n, terms)
+                                .clamped()
+                                .to_array();
+                        }
+                    }
+                });
+        };
+        light(&mut self.lit, 1.0);
+        if options.cull_backfaces {
+            table.used
+        } else {
+            light(&mut self.lit_back, -1.0);
+            2 * table.used
+        }
+    }
+}
+
+/// Runs one band of a pass, compiled for the SIMD level.
+fn band_pass<S: Shader>(
+    band: &mut Band,
+    index: usize,
+    chunks: &[Chunk],
+    shader: &S,
+    options: &RenderOptions,
+    pass: Pass,
+    simd: SimdLevel,
+) {
+    dispatch(
+        simd,
+        BandKernel {
+            band,
+            index,
+            chunks,
+            shader,
+            options,
+            pass,
+        },
+    );
+}
