@@ -81,7 +81,8 @@ impl Mul<f32> for Rgb {
 }
 
 /// An 8-bit RGB pixel, channels 0–255.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(transparent)]
 pub struct Rgb8(pub [u8; 3]);
 
 impl Rgb8 {

@@ -1,25 +1,32 @@
 //! Eight lanes of `f32`, `i32` and `i64`: the only place with `unsafe`.
 //!
 //! The tiled rasterizer works on blocks of 8 pixels. Its hot code is written
-//! once, over these lane types, whose operations are plain loops over arrays
-//! of 8 and always inlined. The same code is then compiled twice:
+//! once, generic over a [`Simd`] backend, with the lane types [`Vf`] (8 ×
+//! f32) and [`Vi`] (8 × i32, also used as lane masks) giving it ordinary
+//! operators. Two backends exist:
 //!
-//! * inside a function with `#[target_feature(enable = "avx2,fma")]`, where
-//!   LLVM turns each loop into one AVX2 instruction (8 × f32 in a `ymm`), and
-//! * as ordinary portable code, which LLVM vectorizes for whatever the target
-//!   has (SSE2 on any x86-64, `simd128` on WebAssembly when enabled).
+//! * [`Portable`]: arrays of 8 and loops, plain safe Rust that compiles for
+//!   any target (LLVM vectorizes some of it: SSE2, or `simd128` on
+//!   WebAssembly when enabled);
+//! * [`Avx2`] (x86-64): one AVX2 instruction per operation. A value of this
+//!   type exists only once the CPU is known to have AVX2 and FMA, which is
+//!   what makes its `unsafe` intrinsic calls sound.
 //!
-//! [`SimdLevel`] picks one at run time; [`SimdLevel::Portable`] can be forced
-//! so that the fallback stays tested. Both produce the same results: the
-//! operations are IEEE single precision with no fused multiply-add, so the
-//! two builds agree bit for bit.
+//! [`dispatch`] runs a [`Kernel`] with the best backend inside a
+//! `#[target_feature(enable = "avx2,fma")]` function, so that the inlined
+//! intrinsics compile to VEX code. Both backends compute in IEEE single
+//! precision; they differ in the last bits only, where AVX2 fuses
+//! multiply-adds and uses its reciprocal estimates refined by a Newton step
+//! (22+ bits instead of an exact division, which costs 5–10 times more), so
+//! colours agree within 1/255. Tests check both, and
+//! [`SimdLevel::Portable`] can be forced.
 
-use std::ops::{Add, BitAnd, BitOr, Mul, Neg, Sub};
+use std::ops::{Add, BitAnd, BitOr, Mul, Sub};
 
 /// Which instruction set the tiled rasterizer's inner loops use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SimdLevel {
-    /// Plain Rust, vectorized by the compiler for the build target.
+    /// Plain Rust, vectorized by the compiler where it can.
     Portable,
     /// 8-lane AVX2 (x86-64 only, chosen when the CPU has it).
     Avx2,
@@ -54,371 +61,828 @@ impl SimdLevel {
     }
 }
 
-/// A piece of work to compile once per [`SimdLevel`]. `run` must be
-/// `#[inline(always)]`, and so must everything it calls in its hot loops,
-/// for the AVX2 build to reach them.
+/// A piece of work compiled once per backend. `run` and everything it calls
+/// in its hot loops must be `#[inline(always)]`.
 pub(crate) trait Kernel {
     /// What the work produces.
     type Output;
-    /// Does the work.
-    fn run(self) -> Self::Output;
+    /// Does the work with backend `S`.
+    fn run<S: Simd>(self, simd: S) -> Self::Output;
 }
 
-/// Runs `kernel`, compiled for `level` (portable when the CPU lacks it).
+/// Runs `kernel` with the backend for `level` (portable when the CPU lacks it).
 pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, kernel: K) -> K::Output {
     #[cfg(target_arch = "x86_64")]
     {
         #[target_feature(enable = "avx2,fma")]
-        unsafe fn with_avx2<K: Kernel>(kernel: K) -> K::Output {
-            kernel.run()
+        unsafe fn with_avx2<K: Kernel>(kernel: K, simd: avx2::Avx2) -> K::Output {
+            kernel.run(simd)
         }
-        if level == SimdLevel::Avx2 && level.is_supported() {
-            // SAFETY: the CPU supports AVX2 and FMA (checked just above), the
-            // only requirement of a `target_feature` function.
-            return unsafe { with_avx2(kernel) };
+        if level == SimdLevel::Avx2 {
+            if let Some(simd) = avx2::Avx2::new() {
+                // SAFETY: `Avx2::new` succeeded, so the CPU has AVX2 and FMA,
+                // the only requirement of a `target_feature` function.
+                return unsafe { with_avx2(kernel, simd) };
+            }
         }
     }
     let _ = level;
-    kernel.run()
+    kernel.run(Portable)
 }
 
-/// Eight `f32` lanes.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(C, align(32))]
-pub(crate) struct F32x8(pub [f32; 8]);
+/// The operations the rasterizer needs on 8 lanes.
+pub(crate) trait Simd: Copy + Send + Sync {
+    /// 8 × f32.
+    type F: Copy;
+    /// 8 × i32; masks are all ones (true) or zero per lane.
+    type I: Copy;
+    /// 8 × i64, for edge functions.
+    type E: Copy;
 
-/// Eight lane masks: all bits set (true) or clear (false).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(C, align(32))]
-pub(crate) struct Mask8(pub [i32; 8]);
+    fn f_splat(self, v: f32) -> Self::F;
+    fn f_add(self, a: Self::F, b: Self::F) -> Self::F;
+    fn f_sub(self, a: Self::F, b: Self::F) -> Self::F;
+    fn f_mul(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a·b + c`, fused where the backend can (AVX2 FMA), else two roundings.
+    fn f_mul_add(self, a: Self::F, b: Self::F, c: Self::F) -> Self::F;
+    /// `a < b ? a : b` (so a NaN in `a` gives `b`).
+    fn f_min(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a > b ? a : b` (so a NaN in `a` gives `b`).
+    fn f_max(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `1 / √a` to at least 22 bits (exact in the portable backend); any
+    /// value where `a` is zero, negative or not finite.
+    fn f_rsqrt(self, a: Self::F) -> Self::F;
+    /// `1 / a` to at least 22 bits (exact in the portable backend) for
+    /// finite non-zero `a`.
+    fn f_recip(self, a: Self::F) -> Self::F;
+    fn f_floor(self, a: Self::F) -> Self::F;
+    fn f_lt(self, a: Self::F, b: Self::F) -> Self::I;
+    fn f_gt(self, a: Self::F, b: Self::F) -> Self::I;
+    /// Lanes of `a` where `mask` is set, of `b` elsewhere.
+    fn f_select(self, mask: Self::I, a: Self::F, b: Self::F) -> Self::F;
+    fn f_load(self, src: &[f32; 8]) -> Self::F;
+    fn f_store(self, v: Self::F, dst: &mut [f32; 8]);
+    /// Truncation towards zero; lanes must lie within ±2^31.
+    fn f_to_i(self, a: Self::F) -> Self::I;
+    fn f_bits(self, a: Self::F) -> Self::I;
+    fn f_from_i(self, a: Self::I) -> Self::F;
+    fn f_from_bits(self, a: Self::I) -> Self::F;
+    fn f_lanes(self) -> Self::F;
 
-/// Eight `i64` lanes, for edge functions whose products need 64 bits.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(C, align(64))]
-pub(crate) struct I64x8(pub [i64; 8]);
+    fn i_splat(self, v: i32) -> Self::I;
+    fn i_add(self, a: Self::I, b: Self::I) -> Self::I;
+    fn i_sub(self, a: Self::I, b: Self::I) -> Self::I;
+    fn i_and(self, a: Self::I, b: Self::I) -> Self::I;
+    fn i_or(self, a: Self::I, b: Self::I) -> Self::I;
+    fn i_max(self, a: Self::I, b: Self::I) -> Self::I;
+    fn i_shl(self, a: Self::I, bits: u32) -> Self::I;
+    fn i_sra(self, a: Self::I, bits: u32) -> Self::I;
+    /// Lanes of `a` where `mask` is set, of `b` elsewhere.
+    fn i_select(self, mask: Self::I, a: Self::I, b: Self::I) -> Self::I;
+    fn i_load(self, src: &[i32; 8]) -> Self::I;
+    fn i_store(self, v: Self::I, dst: &mut [i32; 8]);
+    /// The sign bit of each lane, as bits 0..8.
+    fn i_bits(self, a: Self::I) -> u32;
+    /// A mask from bits 0..8.
+    fn i_from_bits(self, bits: u32) -> Self::I;
 
-macro_rules! lanewise {
-    ($a:expr, $b:expr, |$x:ident, $y:ident| $e:expr) => {{
-        let (a, b) = ($a, $b);
+    /// The low three bytes of each lane, packed: 8 RGB pixels.
+    fn i_store_rgb(self, v: Self::I, dst: &mut [u8; 24]);
+
+    /// `start + step·i` in lane `i`.
+    fn e_ramp(self, start: i64, step: i64) -> Self::E;
+    fn e_add(self, a: Self::E, v: i64) -> Self::E;
+    /// Bits 0..8 of the lanes where all three are non-negative.
+    fn e_inside(self, a: Self::E, b: Self::E, c: Self::E) -> u32;
+}
+
+/// The portable backend: arrays and loops.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Portable;
+
+macro_rules! lanes {
+    (|$i:ident| $e:expr) => {{
         let mut out = [Default::default(); 8];
-        for i in 0..8 {
-            let ($x, $y) = (a[i], b[i]);
-            out[i] = $e;
+        for $i in 0..8 {
+            out[$i] = $e;
         }
         out
     }};
 }
 
-impl F32x8 {
-    pub const LANE_INDEX: F32x8 = F32x8([0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
+impl Simd for Portable {
+    type F = [f32; 8];
+    type I = [i32; 8];
+    type E = [i64; 8];
 
     #[inline(always)]
-    pub fn splat(v: f32) -> F32x8 {
-        F32x8([v; 8])
+    fn f_splat(self, v: f32) -> [f32; 8] {
+        [v; 8]
+    }
+    #[inline(always)]
+    fn f_add(self, a: [f32; 8], b: [f32; 8]) -> [f32; 8] {
+        lanes!(|i| a[i] + b[i])
+    }
+    #[inline(always)]
+    fn f_sub(self, a: [f32; 8], b: [f32; 8]) -> [f32; 8] {
+        lanes!(|i| a[i] - b[i])
+    }
+    #[inline(always)]
+    fn f_mul(self, a: [f32; 8], b: [f32; 8]) -> [f32; 8] {
+        lanes!(|i| a[i] * b[i])
+    }
+    #[inline(always)]
+    fn f_mul_add(self, a: [f32; 8], b: [f32; 8], c: [f32; 8]) -> [f32; 8] {
+        lanes!(|i| a[i] * b[i] + c[i])
+    }
+    #[inline(always)]
+    fn f_min(self, a: [f32; 8], b: [f32; 8]) -> [f32; 8] {
+        lanes!(|i| if a[i] < b[i] { a[i] } else { b[i] })
+    }
+    #[inline(always)]
+    fn f_max(self, a: [f32; 8], b: [f32; 8]) -> [f32; 8] {
+        lanes!(|i| if a[i] > b[i] { a[i] } else { b[i] })
+    }
+    #[inline(always)]
+    fn f_rsqrt(self, a: [f32; 8]) -> [f32; 8] {
+        lanes!(|i| 1.0 / a[i].sqrt())
+    }
+    #[inline(always)]
+    fn f_recip(self, a: [f32; 8]) -> [f32; 8] {
+        lanes!(|i| 1.0 / a[i])
+    }
+    #[inline(always)]
+    fn f_floor(self, a: [f32; 8]) -> [f32; 8] {
+        lanes!(|i| a[i].floor())
+    }
+    #[inline(always)]
+    fn f_lt(self, a: [f32; 8], b: [f32; 8]) -> [i32; 8] {
+        lanes!(|i| -i32::from(a[i] < b[i]))
+    }
+    #[inline(always)]
+    fn f_gt(self, a: [f32; 8], b: [f32; 8]) -> [i32; 8] {
+        lanes!(|i| -i32::from(a[i] > b[i]))
+    }
+    #[inline(always)]
+    fn f_select(self, m: [i32; 8], a: [f32; 8], b: [f32; 8]) -> [f32; 8] {
+        lanes!(|i| if m[i] < 0 { a[i] } else { b[i] })
+    }
+    #[inline(always)]
+    fn f_load(self, src: &[f32; 8]) -> [f32; 8] {
+        *src
+    }
+    #[inline(always)]
+    fn f_store(self, v: [f32; 8], dst: &mut [f32; 8]) {
+        *dst = v;
+    }
+    #[inline(always)]
+    fn f_to_i(self, a: [f32; 8]) -> [i32; 8] {
+        lanes!(|i| a[i] as i32)
+    }
+    #[inline(always)]
+    fn f_bits(self, a: [f32; 8]) -> [i32; 8] {
+        lanes!(|i| a[i].to_bits() as i32)
+    }
+    #[inline(always)]
+    fn f_from_i(self, a: [i32; 8]) -> [f32; 8] {
+        lanes!(|i| a[i] as f32)
+    }
+    #[inline(always)]
+    fn f_from_bits(self, a: [i32; 8]) -> [f32; 8] {
+        lanes!(|i| f32::from_bits(a[i] as u32))
+    }
+    #[inline(always)]
+    fn f_lanes(self) -> [f32; 8] {
+        [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]
     }
 
     #[inline(always)]
-    pub fn load(src: &[f32]) -> F32x8 {
-        let mut out = [0.0; 8];
-        out.copy_from_slice(&src[..8]);
-        F32x8(out)
+    fn i_splat(self, v: i32) -> [i32; 8] {
+        [v; 8]
+    }
+    #[inline(always)]
+    fn i_add(self, a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        lanes!(|i| a[i].wrapping_add(b[i]))
+    }
+    #[inline(always)]
+    fn i_sub(self, a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        lanes!(|i| a[i].wrapping_sub(b[i]))
+    }
+    #[inline(always)]
+    fn i_and(self, a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        lanes!(|i| a[i] & b[i])
+    }
+    #[inline(always)]
+    fn i_or(self, a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        lanes!(|i| a[i] | b[i])
+    }
+    #[inline(always)]
+    fn i_max(self, a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        lanes!(|i| a[i].max(b[i]))
+    }
+    #[inline(always)]
+    fn i_shl(self, a: [i32; 8], bits: u32) -> [i32; 8] {
+        lanes!(|i| a[i] << bits)
+    }
+    #[inline(always)]
+    fn i_sra(self, a: [i32; 8], bits: u32) -> [i32; 8] {
+        lanes!(|i| a[i] >> bits)
+    }
+    #[inline(always)]
+    fn i_select(self, m: [i32; 8], a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        lanes!(|i| (a[i] & m[i]) | (b[i] & !m[i]))
+    }
+    #[inline(always)]
+    fn i_load(self, src: &[i32; 8]) -> [i32; 8] {
+        *src
+    }
+    #[inline(always)]
+    fn i_store(self, v: [i32; 8], dst: &mut [i32; 8]) {
+        *dst = v;
+    }
+    #[inline(always)]
+    fn i_bits(self, a: [i32; 8]) -> u32 {
+        (0..8).fold(0, |acc, i| acc | ((a[i] as u32) >> 31) << i)
+    }
+    #[inline(always)]
+    fn i_from_bits(self, bits: u32) -> [i32; 8] {
+        lanes!(|i| -(((bits >> i) & 1) as i32))
     }
 
     #[inline(always)]
-    pub fn store(self, dst: &mut [f32]) {
-        dst[..8].copy_from_slice(&self.0);
-    }
-
-    #[inline(always)]
-    pub fn min(self, o: F32x8) -> F32x8 {
-        F32x8(lanewise!(self.0, o.0, |a, b| if a < b { a } else { b }))
-    }
-
-    #[inline(always)]
-    pub fn max(self, o: F32x8) -> F32x8 {
-        F32x8(lanewise!(self.0, o.0, |a, b| if a > b { a } else { b }))
-    }
-
-    #[inline(always)]
-    pub fn div(self, o: F32x8) -> F32x8 {
-        F32x8(lanewise!(self.0, o.0, |a, b| a / b))
-    }
-
-    #[inline(always)]
-    pub fn sqrt(self) -> F32x8 {
-        let mut out = self.0;
-        for v in &mut out {
-            *v = v.sqrt();
+    fn i_store_rgb(self, v: [i32; 8], dst: &mut [u8; 24]) {
+        for (i, pixel) in dst.chunks_exact_mut(3).enumerate() {
+            pixel.copy_from_slice(&v[i].to_le_bytes()[..3]);
         }
-        F32x8(out)
     }
 
     #[inline(always)]
-    pub fn floor(self) -> F32x8 {
-        let mut out = self.0;
-        for v in &mut out {
-            *v = v.floor();
+    fn e_ramp(self, start: i64, step: i64) -> [i64; 8] {
+        lanes!(|i| start + step * i as i64)
+    }
+    #[inline(always)]
+    fn e_add(self, a: [i64; 8], v: i64) -> [i64; 8] {
+        lanes!(|i| a[i] + v)
+    }
+    #[inline(always)]
+    fn e_inside(self, a: [i64; 8], b: [i64; 8], c: [i64; 8]) -> u32 {
+        (0..8).fold(0, |acc, i| acc | u32::from((a[i] | b[i] | c[i]) >= 0) << i)
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+mod avx2 {
+    use std::arch::x86_64::*;
+
+    use super::Simd;
+
+    /// The AVX2 backend; a value proves the CPU has AVX2 and FMA.
+    #[derive(Debug, Clone, Copy)]
+    pub(crate) struct Avx2(());
+
+    impl Avx2 {
+        pub fn new() -> Option<Avx2> {
+            (std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma"))
+                .then_some(Avx2(()))
         }
-        F32x8(out)
     }
 
-    #[inline(always)]
-    pub fn lt(self, o: F32x8) -> Mask8 {
-        Mask8(lanewise!(self.0, o.0, |a, b| -i32::from(a < b)))
-    }
+    // Every method below calls AVX/AVX2 intrinsics. SAFETY (for each
+    // `unsafe` block in this impl): `self` is an `Avx2`, which only
+    // `Avx2::new` creates after checking that the CPU has AVX2 and FMA;
+    // loads and stores go through references to exactly 8 lanes.
+    impl Simd for Avx2 {
+        type F = __m256;
+        type I = __m256i;
+        type E = [__m256i; 2];
 
-    #[inline(always)]
-    pub fn gt(self, o: F32x8) -> Mask8 {
-        Mask8(lanewise!(self.0, o.0, |a, b| -i32::from(a > b)))
-    }
-
-    /// Lanes of `self` where `mask` is set, of `other` elsewhere.
-    #[inline(always)]
-    pub fn select(mask: Mask8, yes: F32x8, no: F32x8) -> F32x8 {
-        let mut out = no.0;
-        for i in 0..8 {
-            out[i] = f32::from_bits(
-                (yes.0[i].to_bits() & mask.0[i] as u32) | (no.0[i].to_bits() & !mask.0[i] as u32),
-            );
+        #[inline(always)]
+        fn f_splat(self, v: f32) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_set1_ps(v) }
         }
-        F32x8(out)
-    }
-
-    /// The bits of each lane as an integer.
-    #[inline(always)]
-    pub fn to_bits(self) -> [i32; 8] {
-        self.0.map(|v| v.to_bits() as i32)
-    }
-
-    /// Lanes made from bit patterns.
-    #[inline(always)]
-    pub fn from_bits(bits: [i32; 8]) -> F32x8 {
-        F32x8(bits.map(|b| f32::from_bits(b as u32)))
-    }
-
-    /// Converts lanes in [0, 255.5) to bytes, truncating.
-    #[inline(always)]
-    pub fn to_i32_truncated(self) -> [i32; 8] {
-        let mut out = [0; 8];
-        for i in 0..8 {
-            // The callers clamp first, so the saturating cast never saturates.
-            out[i] = self.0[i] as i32;
+        #[inline(always)]
+        fn f_add(self, a: __m256, b: __m256) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_add_ps(a, b) }
         }
-        out
-    }
-}
-
-impl Add for F32x8 {
-    type Output = F32x8;
-    #[inline(always)]
-    fn add(self, o: F32x8) -> F32x8 {
-        F32x8(lanewise!(self.0, o.0, |a, b| a + b))
-    }
-}
-
-impl Sub for F32x8 {
-    type Output = F32x8;
-    #[inline(always)]
-    fn sub(self, o: F32x8) -> F32x8 {
-        F32x8(lanewise!(self.0, o.0, |a, b| a - b))
-    }
-}
-
-impl Mul for F32x8 {
-    type Output = F32x8;
-    #[inline(always)]
-    fn mul(self, o: F32x8) -> F32x8 {
-        F32x8(lanewise!(self.0, o.0, |a, b| a * b))
-    }
-}
-
-impl Mul<f32> for F32x8 {
-    type Output = F32x8;
-    #[inline(always)]
-    fn mul(self, o: f32) -> F32x8 {
-        self * F32x8::splat(o)
-    }
-}
-
-impl Neg for F32x8 {
-    type Output = F32x8;
-    #[inline(always)]
-    fn neg(self) -> F32x8 {
-        F32x8(self.0.map(|v| -v))
-    }
-}
-
-impl Mask8 {
-    /// Lanes `i` with `i < count` set.
-    #[inline(always)]
-    pub fn first(count: i64) -> Mask8 {
-        let mut out = [0; 8];
-        for (i, m) in out.iter_mut().enumerate() {
-            *m = -i32::from((i as i64) < count);
+        #[inline(always)]
+        fn f_sub(self, a: __m256, b: __m256) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_sub_ps(a, b) }
         }
-        Mask8(out)
-    }
-
-    #[inline(always)]
-    pub fn any(self) -> bool {
-        self.0.iter().fold(0, |acc, &m| acc | m) != 0
-    }
-
-    /// Set lanes, as bits 0..8.
-    #[inline(always)]
-    pub fn bits(self) -> u32 {
-        let mut out = 0;
-        for (i, &m) in self.0.iter().enumerate() {
-            out |= ((m as u32) >> 31) << i;
+        #[inline(always)]
+        fn f_mul(self, a: __m256, b: __m256) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_mul_ps(a, b) }
         }
-        out
+        #[inline(always)]
+        fn f_mul_add(self, a: __m256, b: __m256, c: __m256) -> __m256 {
+            // SAFETY: see the impl (FMA is checked with AVX2).
+            unsafe { _mm256_fmadd_ps(a, b, c) }
+        }
+        #[inline(always)]
+        fn f_min(self, a: __m256, b: __m256) -> __m256 {
+            // vminps returns the second operand when either is NaN: `a < b ? a : b`.
+            // SAFETY: see the impl.
+            unsafe { _mm256_min_ps(a, b) }
+        }
+        #[inline(always)]
+        fn f_max(self, a: __m256, b: __m256) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_max_ps(a, b) }
+        }
+        #[inline(always)]
+        fn f_rsqrt(self, a: __m256) -> __m256 {
+            // The 12-bit estimate and one Newton step: r·(3 − a·r²)/2.
+            // SAFETY: see the impl.
+            unsafe {
+                let r = _mm256_rsqrt_ps(a);
+                let ar2 = _mm256_mul_ps(_mm256_mul_ps(a, r), r);
+                _mm256_mul_ps(
+                    _mm256_mul_ps(r, _mm256_set1_ps(0.5)),
+                    _mm256_sub_ps(_mm256_set1_ps(3.0), ar2),
+                )
+            }
+        }
+        #[inline(always)]
+        fn f_recip(self, a: __m256) -> __m256 {
+            // The 12-bit estimate and one Newton step: r·(2 − a·r).
+            // SAFETY: see the impl.
+            unsafe {
+                let r = _mm256_rcp_ps(a);
+                _mm256_mul_ps(r, _mm256_sub_ps(_mm256_set1_ps(2.0), _mm256_mul_ps(a, r)))
+            }
+        }
+        #[inline(always)]
+        fn f_floor(self, a: __m256) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_floor_ps(a) }
+        }
+        #[inline(always)]
+        fn f_lt(self, a: __m256, b: __m256) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LT_OQ>(a, b)) }
+        }
+        #[inline(always)]
+        fn f_gt(self, a: __m256, b: __m256) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_castps_si256(_mm256_cmp_ps::<_CMP_GT_OQ>(a, b)) }
+        }
+        #[inline(always)]
+        fn f_select(self, m: __m256i, a: __m256, b: __m256) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_blendv_ps(b, a, _mm256_castsi256_ps(m)) }
+        }
+        #[inline(always)]
+        fn f_load(self, src: &[f32; 8]) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_loadu_ps(src.as_ptr()) }
+        }
+        #[inline(always)]
+        fn f_store(self, v: __m256, dst: &mut [f32; 8]) {
+            // SAFETY: see the impl.
+            unsafe { _mm256_storeu_ps(dst.as_mut_ptr(), v) }
+        }
+        #[inline(always)]
+        fn f_to_i(self, a: __m256) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_cvttps_epi32(a) }
+        }
+        #[inline(always)]
+        fn f_bits(self, a: __m256) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_castps_si256(a) }
+        }
+        #[inline(always)]
+        fn f_from_i(self, a: __m256i) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_cvtepi32_ps(a) }
+        }
+        #[inline(always)]
+        fn f_from_bits(self, a: __m256i) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_castsi256_ps(a) }
+        }
+        #[inline(always)]
+        fn f_lanes(self) -> __m256 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_setr_ps(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0) }
+        }
+
+        #[inline(always)]
+        fn i_splat(self, v: i32) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_set1_epi32(v) }
+        }
+        #[inline(always)]
+        fn i_add(self, a: __m256i, b: __m256i) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_add_epi32(a, b) }
+        }
+        #[inline(always)]
+        fn i_sub(self, a: __m256i, b: __m256i) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_sub_epi32(a, b) }
+        }
+        #[inline(always)]
+        fn i_and(self, a: __m256i, b: __m256i) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_and_si256(a, b) }
+        }
+        #[inline(always)]
+        fn i_or(self, a: __m256i, b: __m256i) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_or_si256(a, b) }
+        }
+        #[inline(always)]
+        fn i_max(self, a: __m256i, b: __m256i) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_max_epi32(a, b) }
+        }
+        #[inline(always)]
+        fn i_shl(self, a: __m256i, bits: u32) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_sll_epi32(a, _mm_cvtsi32_si128(bits as i32)) }
+        }
+        #[inline(always)]
+        fn i_sra(self, a: __m256i, bits: u32) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_sra_epi32(a, _mm_cvtsi32_si128(bits as i32)) }
+        }
+        #[inline(always)]
+        fn i_select(self, m: __m256i, a: __m256i, b: __m256i) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_blendv_epi8(b, a, m) }
+        }
+        #[inline(always)]
+        fn i_load(self, src: &[i32; 8]) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_loadu_si256(src.as_ptr().cast()) }
+        }
+        #[inline(always)]
+        fn i_store(self, v: __m256i, dst: &mut [i32; 8]) {
+            // SAFETY: see the impl.
+            unsafe { _mm256_storeu_si256(dst.as_mut_ptr().cast(), v) }
+        }
+        #[inline(always)]
+        fn i_bits(self, a: __m256i) -> u32 {
+            // SAFETY: see the impl.
+            unsafe { _mm256_movemask_ps(_mm256_castsi256_ps(a)) as u32 }
+        }
+        #[inline(always)]
+        fn i_from_bits(self, bits: u32) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe {
+                let lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+                let set = _mm256_and_si256(_mm256_set1_epi32(bits as i32), lane_bits);
+                _mm256_cmpeq_epi32(set, lane_bits)
+            }
+        }
+
+        #[inline(always)]
+        fn i_store_rgb(self, v: __m256i, dst: &mut [u8; 24]) {
+            // SAFETY: see the impl; the first store writes bytes 0..16, the
+            // second and third 12..20 and 20..24, all within `dst`.
+            unsafe {
+                let compact = _mm256_setr_epi8(
+                    0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, //
+                    0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
+                );
+                let packed = _mm256_shuffle_epi8(v, compact);
+                let low = _mm256_castsi256_si128(packed);
+                let high = _mm256_extracti128_si256::<1>(packed);
+                let p = dst.as_mut_ptr();
+                _mm_storeu_si128(p.cast(), low);
+                _mm_storel_epi64(p.add(12).cast(), high);
+                (p.add(20) as *mut i32).write_unaligned(_mm_extract_epi32::<2>(high));
+            }
+        }
+
+        #[inline(always)]
+        fn e_ramp(self, start: i64, step: i64) -> [__m256i; 2] {
+            // SAFETY: see the impl.
+            unsafe {
+                let s = |k: i64| start + step * k;
+                [
+                    _mm256_setr_epi64x(s(0), s(1), s(2), s(3)),
+                    _mm256_setr_epi64x(s(4), s(5), s(6), s(7)),
+                ]
+            }
+        }
+        #[inline(always)]
+        fn e_add(self, a: [__m256i; 2], v: i64) -> [__m256i; 2] {
+            // SAFETY: see the impl.
+            unsafe {
+                let v = _mm256_set1_epi64x(v);
+                [_mm256_add_epi64(a[0], v), _mm256_add_epi64(a[1], v)]
+            }
+        }
+        #[inline(always)]
+        fn e_inside(self, a: [__m256i; 2], b: [__m256i; 2], c: [__m256i; 2]) -> u32 {
+            // SAFETY: see the impl.
+            unsafe {
+                let lo = _mm256_or_si256(_mm256_or_si256(a[0], b[0]), c[0]);
+                let hi = _mm256_or_si256(_mm256_or_si256(a[1], b[1]), c[1]);
+                let outside = _mm256_movemask_pd(_mm256_castsi256_pd(lo))
+                    | _mm256_movemask_pd(_mm256_castsi256_pd(hi)) << 4;
+                !(outside as u32) & 0xff
+            }
+        }
     }
 }
 
-impl BitAnd for Mask8 {
-    type Output = Mask8;
+/// 8 × f32 with operators, for backend `S`.
+#[derive(Clone, Copy)]
+pub(crate) struct Vf<S: Simd>(pub S::F, pub S);
+
+/// 8 × i32 (or lane masks) with operators, for backend `S`.
+#[derive(Clone, Copy)]
+pub(crate) struct Vi<S: Simd>(pub S::I, pub S);
+
+impl<S: Simd> Vf<S> {
     #[inline(always)]
-    fn bitand(self, o: Mask8) -> Mask8 {
-        Mask8(lanewise!(self.0, o.0, |a, b| a & b))
+    pub fn splat(s: S, v: f32) -> Self {
+        Vf(s.f_splat(v), s)
+    }
+    #[inline(always)]
+    pub fn lanes(s: S) -> Self {
+        Vf(s.f_lanes(), s)
+    }
+    #[inline(always)]
+    pub fn load(s: S, src: &[f32; 8]) -> Self {
+        Vf(s.f_load(src), s)
+    }
+    #[inline(always)]
+    pub fn store(self, dst: &mut [f32; 8]) {
+        self.1.f_store(self.0, dst)
+    }
+    #[inline(always)]
+    pub fn splat_like(self, v: f32) -> Self {
+        Vf::splat(self.1, v)
+    }
+    /// `self·m + a`, fused where the backend can.
+    #[inline(always)]
+    pub fn mul_add(self, m: Self, a: Self) -> Self {
+        Vf(self.1.f_mul_add(self.0, m.0, a.0), self.1)
+    }
+    #[inline(always)]
+    pub fn min(self, o: Self) -> Self {
+        Vf(self.1.f_min(self.0, o.0), self.1)
+    }
+    #[inline(always)]
+    pub fn max(self, o: Self) -> Self {
+        Vf(self.1.f_max(self.0, o.0), self.1)
+    }
+    /// `1 / √self`, see [`Simd::f_rsqrt`].
+    #[inline(always)]
+    pub fn rsqrt(self) -> Self {
+        Vf(self.1.f_rsqrt(self.0), self.1)
+    }
+    /// `1 / self`, see [`Simd::f_recip`].
+    #[inline(always)]
+    pub fn recip(self) -> Self {
+        Vf(self.1.f_recip(self.0), self.1)
+    }
+    #[inline(always)]
+    pub fn floor(self) -> Self {
+        Vf(self.1.f_floor(self.0), self.1)
+    }
+    #[inline(always)]
+    pub fn lt(self, o: Self) -> Vi<S> {
+        Vi(self.1.f_lt(self.0, o.0), self.1)
+    }
+    #[inline(always)]
+    pub fn gt(self, o: Self) -> Vi<S> {
+        Vi(self.1.f_gt(self.0, o.0), self.1)
+    }
+    /// Lanes of `yes` where `mask` is set, of `no` elsewhere.
+    #[inline(always)]
+    pub fn select(mask: Vi<S>, yes: Self, no: Self) -> Self {
+        Vf(yes.1.f_select(mask.0, yes.0, no.0), yes.1)
+    }
+    /// Truncates towards zero; lanes must lie within ±2^31.
+    #[inline(always)]
+    pub fn to_i(self) -> Vi<S> {
+        Vi(self.1.f_to_i(self.0), self.1)
+    }
+    #[inline(always)]
+    pub fn bits(self) -> Vi<S> {
+        Vi(self.1.f_bits(self.0), self.1)
     }
 }
 
-impl BitOr for Mask8 {
-    type Output = Mask8;
+impl<S: Simd> Vi<S> {
     #[inline(always)]
-    fn bitor(self, o: Mask8) -> Mask8 {
-        Mask8(lanewise!(self.0, o.0, |a, b| a | b))
+    pub fn splat(s: S, v: i32) -> Self {
+        Vi(s.i_splat(v), s)
+    }
+    #[inline(always)]
+    pub fn from_mask_bits(s: S, bits: u32) -> Self {
+        Vi(s.i_from_bits(bits), s)
+    }
+    #[inline(always)]
+    pub fn mask_bits(self) -> u32 {
+        self.1.i_bits(self.0)
+    }
+    #[inline(always)]
+    pub fn shl(self, bits: u32) -> Self {
+        Vi(self.1.i_shl(self.0, bits), self.1)
+    }
+    #[inline(always)]
+    pub fn sra(self, bits: u32) -> Self {
+        Vi(self.1.i_sra(self.0, bits), self.1)
+    }
+    #[inline(always)]
+    pub fn max(self, o: Self) -> Self {
+        Vi(self.1.i_max(self.0, o.0), self.1)
+    }
+    #[inline(always)]
+    pub fn to_f(self) -> Vf<S> {
+        Vf(self.1.f_from_i(self.0), self.1)
+    }
+    #[inline(always)]
+    pub fn bits_to_f(self) -> Vf<S> {
+        Vf(self.1.f_from_bits(self.0), self.1)
+    }
+    /// Lanes of `yes` where `mask` is set, of `no` elsewhere.
+    #[inline(always)]
+    pub fn select(mask: Self, yes: Self, no: Self) -> Self {
+        Vi(yes.1.i_select(mask.0, yes.0, no.0), yes.1)
     }
 }
 
-impl I64x8 {
-    /// `start + step·i` in lane `i`.
-    #[inline(always)]
-    pub fn ramp(start: i64, step: i64) -> I64x8 {
-        let mut out = [0; 8];
-        for (i, v) in out.iter_mut().enumerate() {
-            *v = start + step * i as i64;
+macro_rules! binary {
+    ($ty:ident, $trait:ident, $method:ident, $op:ident) => {
+        impl<S: Simd> $trait for $ty<S> {
+            type Output = Self;
+            #[inline(always)]
+            fn $method(self, o: Self) -> Self {
+                $ty(self.1.$op(self.0, o.0), self.1)
+            }
         }
-        I64x8(out)
-    }
+    };
+}
+binary!(Vf, Add, add, f_add);
+binary!(Vf, Sub, sub, f_sub);
+binary!(Vf, Mul, mul, f_mul);
+binary!(Vi, Add, add, i_add);
+binary!(Vi, Sub, sub, i_sub);
+binary!(Vi, BitAnd, bitand, i_and);
+binary!(Vi, BitOr, bitor, i_or);
 
+impl<S: Simd> Mul<f32> for Vf<S> {
+    type Output = Self;
     #[inline(always)]
-    pub fn add_scalar(self, v: i64) -> I64x8 {
-        I64x8(self.0.map(|x| x + v))
+    fn mul(self, o: f32) -> Self {
+        self * self.splat_like(o)
     }
+}
 
-    /// Lanes where all three values are non-negative.
-    #[inline(always)]
-    pub fn all_non_negative(a: I64x8, b: I64x8, c: I64x8) -> Mask8 {
-        let mut out = [0; 8];
-        for (i, m) in out.iter_mut().enumerate() {
-            // The sign bit of the OR is set when any of the three is negative.
-            *m = !(((a.0[i] | b.0[i] | c.0[i]) >> 63) as i32);
+/// `x^p` for a whole exponent `p` in 1..=1024, by repeated squaring
+/// (at most 19 multiplications, exact to a few ulps).
+#[inline(always)]
+pub(crate) fn pow_whole<S: Simd>(x: Vf<S>, p: u32) -> Vf<S> {
+    let mut result = x.splat_like(1.0);
+    let mut base = x;
+    let mut e = p;
+    while e > 0 {
+        if e & 1 == 1 {
+            result = result * base;
         }
-        Mask8(out)
+        e >>= 1;
+        if e > 0 {
+            base = base * base;
+        }
     }
+    result
 }
 
 /// `x^p` for `x` in [0, 1] and `p > 0`, to about 1e-6 relative error: the
 /// specular power, which the scalar path computes with `powf`.
 #[inline(always)]
-pub(crate) fn pow_unit(x: F32x8, p: f32) -> F32x8 {
+pub(crate) fn pow_unit<S: Simd>(x: Vf<S>, p: f32) -> Vf<S> {
+    let s = x.1;
+    let one = Vf::splat(s, 1.0);
     // log2(x) = e + log2(m), m in [√½, √2): with t = (m − 1)/(m + 1),
     // log2(m) = 2/ln2 · (t + t³/3 + t⁵/5 + t⁷/7 + t⁹/9), |t| ≤ 0.172.
-    let bits = x.to_bits();
-    let mut exponent = [0f32; 8];
-    let mut mantissa_bits = [0i32; 8];
-    for i in 0..8 {
-        // Reduce the mantissa to [√½, √2) by borrowing from the exponent.
-        let adjusted = bits[i] - 0x3f35_04f3; // bits of √½
-        let e = adjusted >> 23;
-        exponent[i] = e as f32;
-        mantissa_bits[i] = bits[i] - (e << 23);
-    }
-    let m = F32x8::from_bits(mantissa_bits);
-    let one = F32x8::splat(1.0);
-    let t = (m - one).div(m + one);
+    let bits = x.bits();
+    let sqrt_half = Vi::splat(s, 0x3f35_04f3);
+    let exponent = (bits - sqrt_half).sra(23);
+    let m = (bits - exponent.shl(23)).bits_to_f();
+    let t = (m - one) * (m + one).recip();
     let t2 = t * t;
-    let series = ((((t2 * (1.0 / 9.0) + F32x8::splat(1.0 / 7.0)) * t2 + F32x8::splat(1.0 / 5.0))
+    let series = ((((t2 * (1.0 / 9.0) + Vf::splat(s, 1.0 / 7.0)) * t2 + Vf::splat(s, 1.0 / 5.0))
         * t2
-        + F32x8::splat(1.0 / 3.0))
+        + Vf::splat(s, 1.0 / 3.0))
         * t2
         + one)
         * t;
-    let log2 = F32x8(exponent) + series * (2.0 / std::f32::consts::LN_2);
+    let log2 = exponent.to_f() + series * (2.0 / std::f32::consts::LN_2);
     // 2^y = 2^i · 2^f with i = round(y), f in [−½, ½], by the Taylor series
     // of e^(f·ln2) to degree 6 (truncation error below 2e-7).
-    let y = (log2 * p).max(F32x8::splat(-127.0));
-    let i = (y + F32x8::splat(0.5)).floor();
+    let y = (log2 * p)
+        .max(Vf::splat(s, -127.0))
+        .min(Vf::splat(s, 127.0));
+    let i = (y + Vf::splat(s, 0.5)).floor();
     let f = y - i;
     const C: [f32; 6] = [
-        0.693_147_2,
+        std::f32::consts::LN_2,
         0.240_226_5,
         5.550_411e-2,
         9.618_129e-3,
         1.333_356e-3,
         1.540_353e-4,
     ];
-    let poly = (((((f * C[5] + F32x8::splat(C[4])) * f + F32x8::splat(C[3])) * f
-        + F32x8::splat(C[2]))
+    let poly = (((((f * C[5] + Vf::splat(s, C[4])) * f + Vf::splat(s, C[3])) * f
+        + Vf::splat(s, C[2]))
         * f
-        + F32x8::splat(C[1]))
+        + Vf::splat(s, C[1]))
         * f
-        + F32x8::splat(C[0]))
+        + Vf::splat(s, C[0]))
         * f
         + one;
-    let scale = i.to_i32_truncated().map(|e| (e + 127).max(0) << 23);
-    let result = poly * F32x8::from_bits(scale);
+    let scale = (i.to_i() + Vi::splat(s, 127)).max(Vi::splat(s, 0)).shl(23);
+    let result = poly * scale.bits_to_f();
     // Exact zeros stay zero; so does anything below 2^-126.
-    F32x8::select(
-        x.gt(F32x8::splat(0.0)) & y.gt(F32x8::splat(-126.0)),
-        result,
-        F32x8::splat(0.0),
-    )
+    let keep = x.gt(Vf::splat(s, 0.0)) & y.gt(Vf::splat(s, -126.0));
+    Vf::select(keep, result, Vf::splat(s, 0.0))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn pow_unit_matches_powf() {
-        for p in [0.5f32, 1.0, 2.0, 7.5, 32.0, 128.0, 1000.0] {
-            let mut worst = 0f32;
-            for k in 0..=4000 {
-                let x = k as f32 / 4000.0;
-                let got = pow_unit(F32x8::splat(x), p).0[0];
-                let want = x.powf(p);
-                worst = worst.max((got - want).abs());
-            }
-            assert!(worst < 2e-5, "p = {p}: worst absolute error {worst}");
+    struct Pow([f32; 8], f32);
+
+    impl Kernel for Pow {
+        type Output = [f32; 8];
+        #[inline(always)]
+        fn run<S: Simd>(self, s: S) -> [f32; 8] {
+            let mut out = [0.0; 8];
+            pow_unit(Vf::load(s, &self.0), self.1).store(&mut out);
+            out
         }
     }
 
-    struct Pow(F32x8);
-
-    impl Kernel for Pow {
-        type Output = F32x8;
-        #[inline(always)]
-        fn run(self) -> F32x8 {
-            pow_unit(self.0, 32.0)
+    #[test]
+    fn pow_unit_matches_powf() {
+        for level in [SimdLevel::Portable, SimdLevel::detect()] {
+            for p in [0.5f32, 1.0, 2.0, 7.5, 32.0, 128.0, 1000.0] {
+                let mut worst = 0f32;
+                for k in 0..=500 {
+                    let xs: [f32; 8] = std::array::from_fn(|i| (k * 8 + i) as f32 / 4000.0);
+                    let got = dispatch(level, Pow(xs, p));
+                    for i in 0..8 {
+                        worst = worst.max((got[i] - xs[i].powf(p)).abs());
+                    }
+                }
+                assert!(
+                    worst < 2e-5,
+                    "{level:?}, p = {p}: worst absolute error {worst}"
+                );
+            }
         }
     }
 
     #[test]
     fn both_levels_agree() {
-        let x = F32x8([0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 0.99, 1.0]);
-        let portable = dispatch(SimdLevel::Portable, Pow(x));
-        let best = dispatch(SimdLevel::detect(), Pow(x));
-        assert_eq!(portable, best);
+        let x = [0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 0.99, 1.0];
+        let portable = dispatch(SimdLevel::Portable, Pow(x, 32.0));
+        let best = dispatch(SimdLevel::detect(), Pow(x, 32.0));
+        for i in 0..8 {
+            assert!(
+                (portable[i] - best[i]).abs() <= 1e-6,
+                "{portable:?} vs {best:?}"
+            );
+        }
+    }
+
+    struct Edges;
+
+    impl Kernel for Edges {
+        type Output = (u32, u32, u32);
+        #[inline(always)]
+        fn run<S: Simd>(self, s: S) -> (u32, u32, u32) {
+            let a = s.e_ramp(-3, 1);
+            let b = s.e_ramp(0, 0);
+            let c = s.e_add(s.e_ramp(1 << 40, -(1 << 38)), 0);
+            let mask = Vi::from_mask_bits(s, 0b1010_0110);
+            (
+                s.e_inside(a, b, c),
+                mask.mask_bits(),
+                (Vi::splat(s, -1) & mask).mask_bits(),
+            )
+        }
     }
 
     #[test]
     fn edge_masks() {
-        let a = I64x8::ramp(-3, 1);
-        let b = I64x8::ramp(0, 0);
-        let c = I64x8::ramp(1 << 40, -(1 << 38));
-        assert_eq!(I64x8::all_non_negative(a, b, c).bits(), 0b0001_1000);
-        assert_eq!(Mask8::first(3).bits(), 0b111);
+        for level in [SimdLevel::Portable, SimdLevel::detect()] {
+            assert_eq!(
+                dispatch(level, Edges),
+                (0b0001_1000, 0b1010_0110, 0b1010_0110)
+            );
+        }
     }
 }

@@ -15,12 +15,15 @@
 //! Nothing here allocates. Everything is `#[inline(always)]` so that
 //! [`crate::simd::dispatch`] compiles it for AVX2 and for the portable path.
 
+// Loops over the three edges, channels and planes index several arrays at once.
+#![allow(clippy::needless_range_loop)]
+
 use glam::Vec3;
 
 use super::setup::{Plane, Triangle, BAND_ROWS};
 use crate::lighting::{LightKind, Lighting};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
-use crate::simd::{pow_unit, F32x8, I64x8, Mask8};
+use crate::simd::{pow_unit, pow_whole, Simd, Vf, Vi};
 
 /// The most attributes a method interpolates (Phong: normal and position).
 pub(crate) const MAX_ATTRS: usize = 6;
@@ -30,7 +33,7 @@ pub(crate) trait Shader: Sync {
     /// How many attributes the method interpolates.
     const ATTRS: usize;
     /// Colours of 8 fragments, packed `r | g << 8 | b << 16`.
-    fn shade(&self, triangle: &Triangle, attrs: &[F32x8; MAX_ATTRS]) -> [i32; 8];
+    fn shade<S: Simd>(&self, s: S, triangle: &Triangle, attrs: &[Vf<S>; MAX_ATTRS]) -> Vi<S>;
 }
 
 /// Flat shading: the triangle's polygon was lit once, at setup.
@@ -39,8 +42,8 @@ pub(crate) struct FlatShader;
 impl Shader for FlatShader {
     const ATTRS: usize = 0;
     #[inline(always)]
-    fn shade(&self, triangle: &Triangle, _: &[F32x8; MAX_ATTRS]) -> [i32; 8] {
-        [triangle.color as i32; 8]
+    fn shade<S: Simd>(&self, s: S, triangle: &Triangle, _: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
+        Vi::splat(s, triangle.color as i32)
     }
 }
 
@@ -50,7 +53,7 @@ pub(crate) struct GouraudShader;
 impl Shader for GouraudShader {
     const ATTRS: usize = 3;
     #[inline(always)]
-    fn shade(&self, _: &Triangle, a: &[F32x8; MAX_ATTRS]) -> [i32; 8] {
+    fn shade<S: Simd>(&self, _: S, _: &Triangle, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
         pack(a[0], a[1], a[2])
     }
 }
@@ -74,6 +77,18 @@ pub(crate) struct PhongShader {
     eye: Vec3,
     lights: Vec<LaneLight>,
     shininess: f32,
+    power: Power,
+}
+
+/// How `max(0, r·v)^p` is computed for the material's `p`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Power {
+    /// A whole `p` in 1..=1024: repeated squaring.
+    Whole(u32),
+    /// Other `p` in (0, 4096]: exp2(p·log2(x)) by polynomials.
+    Fraction,
+    /// Anything else (0, negative, huge): `powf` lane by lane.
+    Scalar,
 }
 
 impl PhongShader {
@@ -98,82 +113,117 @@ impl PhongShader {
                 }
             })
             .collect();
+        let p = m.shininess;
+        let power = if p.fract() == 0.0 && (1.0..=1024.0).contains(&p) {
+            Power::Whole(p as u32)
+        } else if p > 0.0 && p <= 4096.0 {
+            Power::Fraction
+        } else {
+            Power::Scalar
+        };
         PhongShader {
             ambient: (lighting.ambient * m.ka).to_array(),
             eye: lighting.eye,
             lights,
-            shininess: m.shininess,
+            shininess: p,
+            power,
         }
     }
 
     #[inline(always)]
-    fn power(&self, x: F32x8) -> F32x8 {
-        let p = self.shininess;
-        if p > 0.0 && p <= 4096.0 {
-            pow_unit(x, p)
-        } else {
-            F32x8(x.0.map(|v| v.powf(p)))
+    fn power<S: Simd>(&self, x: Vf<S>) -> Vf<S> {
+        match self.power {
+            Power::Whole(p) => pow_whole(x, p),
+            Power::Fraction => pow_unit(x, self.shininess),
+            Power::Scalar => power_scalar(x, self.shininess),
         }
     }
 }
 
+/// `x^p` lane by lane with `powf`, for exponents outside `pow_unit`'s range.
+#[cold]
+fn power_scalar<S: Simd>(x: Vf<S>, p: f32) -> Vf<S> {
+    let mut lanes = [0.0; 8];
+    x.store(&mut lanes);
+    for v in &mut lanes {
+        *v = v.powf(p);
+    }
+    Vf::load(x.1, &lanes)
+}
+
 /// `v / |v|`, or zero where `|v|` is zero or not finite (glam's `normalize_or_zero`).
 #[inline(always)]
-fn normalize_or_zero(v: [F32x8; 3]) -> [F32x8; 3] {
-    let len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    let recip = F32x8::splat(1.0).div(len2.sqrt());
-    let ok = recip.gt(F32x8::splat(0.0)) & recip.lt(F32x8::splat(f32::INFINITY));
-    let scale = F32x8::select(ok, recip, F32x8::splat(0.0));
-    v.map(|c| c * scale)
+fn normalize_or_zero<S: Simd>(v: [Vf<S>; 3]) -> [Vf<S>; 3] {
+    let len2 = v[0].mul_add(v[0], v[1].mul_add(v[1], v[2] * v[2]));
+    let ok = len2.gt(len2.splat_like(0.0)) & len2.lt(len2.splat_like(f32::INFINITY));
+    let scale = Vf::select(ok, len2.rsqrt(), len2.splat_like(0.0));
+    [v[0] * scale, v[1] * scale, v[2] * scale]
 }
 
 impl Shader for PhongShader {
     const ATTRS: usize = 6;
     #[inline(always)]
-    fn shade(&self, triangle: &Triangle, a: &[F32x8; MAX_ATTRS]) -> [i32; 8] {
-        let n = normalize_or_zero([a[0], a[1], a[2]].map(|c| c * triangle.flip));
+    fn shade<S: Simd>(&self, s: S, triangle: &Triangle, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
+        let flip = triangle.flip;
+        let n = normalize_or_zero([a[0] * flip, a[1] * flip, a[2] * flip]);
         let p = [a[3], a[4], a[5]];
-        let eye = self.eye.to_array();
-        let view = normalize_or_zero([0, 1, 2].map(|k| F32x8::splat(eye[k]) - p[k]));
-        let mut out = self.ambient.map(F32x8::splat);
-        let zero = F32x8::splat(0.0);
+        let view = towards(s, self.eye, &p);
+        let mut out = [
+            Vf::splat(s, self.ambient[0]),
+            Vf::splat(s, self.ambient[1]),
+            Vf::splat(s, self.ambient[2]),
+        ];
+        let zero = Vf::splat(s, 0.0);
         for light in &self.lights {
             let l = match light.position {
-                Some(q) => {
-                    let q = q.to_array();
-                    normalize_or_zero([0, 1, 2].map(|k| F32x8::splat(q[k]) - p[k]))
-                }
-                None => light.towards.to_array().map(F32x8::splat),
+                Some(q) => towards(s, q, &p),
+                None => [
+                    Vf::splat(s, light.towards.x),
+                    Vf::splat(s, light.towards.y),
+                    Vf::splat(s, light.towards.z),
+                ],
             };
-            let n_dot_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+            let n_dot_l = n[0].mul_add(l[0], n[1].mul_add(l[1], n[2] * l[2]));
             let lit = n_dot_l.gt(zero);
             let twice = n_dot_l * 2.0;
-            let r = [0, 1, 2].map(|k| n[k] * twice - l[k]);
-            let r_dot_v = (r[0] * view[0] + r[1] * view[1] + r[2] * view[2]).max(zero);
-            let s = self.power(r_dot_v);
+            let r = [
+                n[0] * twice - l[0],
+                n[1] * twice - l[1],
+                n[2] * twice - l[2],
+            ];
+            let r_dot_v = r[0]
+                .mul_add(view[0], r[1].mul_add(view[1], r[2] * view[2]))
+                .max(zero);
+            let spec = self.power(r_dot_v);
             for k in 0..3 {
-                let add =
-                    F32x8::splat(light.diffuse[k]) * n_dot_l + F32x8::splat(light.specular[k]) * s;
-                out[k] = out[k] + F32x8::select(lit, add, zero);
+                let add = n_dot_l.mul_add(Vf::splat(s, light.diffuse[k]), spec * light.specular[k]);
+                out[k] = out[k] + Vf::select(lit, add, zero);
             }
         }
         pack(out[0], out[1], out[2])
     }
 }
 
+/// The unit vectors from points `p` towards `q` (zero where they coincide).
+#[inline(always)]
+fn towards<S: Simd>(s: S, q: Vec3, p: &[Vf<S>; 3]) -> [Vf<S>; 3] {
+    normalize_or_zero([
+        Vf::splat(s, q.x) - p[0],
+        Vf::splat(s, q.y) - p[1],
+        Vf::splat(s, q.z) - p[2],
+    ])
+}
+
 /// Colours in [0, 1] (clamped) to packed bytes, rounding as [`crate::Rgb8::from_rgb`].
 #[inline(always)]
-fn pack(r: F32x8, g: F32x8, b: F32x8) -> [i32; 8] {
-    let byte = |c: F32x8| {
-        (c.max(F32x8::splat(0.0)).min(F32x8::splat(1.0)) * 255.0 + F32x8::splat(0.5))
-            .to_i32_truncated()
-    };
-    let (r, g, b) = (byte(r), byte(g), byte(b));
-    let mut out = [0; 8];
-    for i in 0..8 {
-        out[i] = r[i] | (g[i] << 8) | (b[i] << 16);
-    }
-    out
+fn pack<S: Simd>(r: Vf<S>, g: Vf<S>, b: Vf<S>) -> Vi<S> {
+    byte(r) | byte(g).shl(8) | byte(b).shl(16)
+}
+
+/// A channel in [0, 1] (clamped) to 0..=255, rounding half up.
+#[inline(always)]
+fn byte<S: Simd>(c: Vf<S>) -> Vi<S> {
+    (c.max(c.splat_like(0.0)).min(c.splat_like(1.0)) * 255.0 + c.splat_like(0.5)).to_i()
 }
 
 /// A band's working storage, kept between frames.
@@ -204,8 +254,10 @@ pub(crate) enum Pass {
 }
 
 impl Band {
-    /// Prepares the buffers for a frame of `width` pixels per row.
-    pub fn begin(&mut self, width: u32, rows: u32, background: i32, pass: Pass) {
+    /// Prepares the buffers for a frame of `width` pixels per row. The
+    /// colour buffer is not cleared: [`Band::finish`] takes the background
+    /// wherever the depth is still 1.
+    pub fn begin(&mut self, width: u32, rows: u32, pass: Pass) {
         self.stride = (width as usize).next_multiple_of(8);
         let len = self.stride * rows as usize;
         self.fragments = 0;
@@ -215,8 +267,7 @@ impl Band {
             Pass::Shade => {
                 self.depth.clear();
                 self.depth.resize(len, 1.0);
-                self.color.clear();
-                self.color.resize(len, background);
+                self.color.resize(len, 0);
             }
             Pass::Count => {
                 self.counts.clear();
@@ -225,24 +276,53 @@ impl Band {
         }
     }
 
-    /// Copies the finished band into its rows of the image and counts the
-    /// pixels drawn.
-    pub fn finish(&mut self, out: &mut [crate::color::Rgb8], width: u32) {
+    /// Copies the finished band into its rows of the image (the background
+    /// where the depth is still 1) and counts the pixels drawn.
+    #[inline(always)]
+    pub fn finish<S: Simd>(
+        &mut self,
+        s: S,
+        out: &mut [crate::color::Rgb8],
+        width: u32,
+        background: i32,
+    ) {
         let width = width as usize;
         let mut covered = 0;
+        let (far, background) = (Vf::splat(s, 1.0), Vi::splat(s, background));
         for (row, pixels) in out.chunks_mut(width).enumerate() {
             let start = row * self.stride;
-            let colors = &self.color[start..start + width];
-            let depths = &self.depth[start..start + width];
-            for ((pixel, &c), &d) in pixels.iter_mut().zip(colors).zip(depths) {
-                *pixel = crate::color::Rgb8([c as u8, (c >> 8) as u8, (c >> 16) as u8]);
-                covered += u64::from(d < 1.0);
+            let bytes: &mut [u8] = bytemuck::cast_slice_mut(pixels);
+            let mut blocks = bytes.chunks_exact_mut(24);
+            for (k, block) in blocks.by_ref().enumerate() {
+                let at = start + 8 * k;
+                let depth = Vf::load(s, (&self.depth[at..at + 8]).try_into().unwrap());
+                let drawn = depth.lt(far);
+                covered += drawn.mask_bits().count_ones();
+                let color = Vi(s.i_load((&self.color[at..at + 8]).try_into().unwrap()), s);
+                s.i_store_rgb(
+                    Vi::select(drawn, color, background).0,
+                    block.try_into().unwrap(),
+                );
+            }
+            let done = width - width % 8;
+            let mut bg = [0; 8];
+            s.i_store(background.0, &mut bg);
+            for (j, dst) in blocks.into_remainder().chunks_exact_mut(3).enumerate() {
+                let at = start + done + j;
+                let c = if self.depth[at] < 1.0 {
+                    covered += 1;
+                    self.color[at]
+                } else {
+                    bg[0]
+                };
+                dst.copy_from_slice(&c.to_le_bytes()[..3]);
             }
         }
-        self.covered = covered;
+        self.covered = u64::from(covered);
     }
 
     /// Copies coverage counts into their rows of `out`.
+    #[inline(always)]
     pub fn finish_counts(&self, out: &mut [u32], width: u32) {
         let width = width as usize;
         for (row, counts) in out.chunks_mut(width).enumerate() {
@@ -265,11 +345,12 @@ impl Band {
     /// of an image `width` pixels wide).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    pub fn draw<S: Shader>(
+    pub fn draw<S: Simd, Sh: Shader>(
         &mut self,
+        s: S,
         t: &Triangle,
         planes: &[Plane],
-        shader: &S,
+        shader: &Sh,
         interpolation: Interpolation,
         band_y0: u32,
         band_y1: u32,
@@ -279,17 +360,38 @@ impl Band {
         let rows = (t.y0.max(band_y0 as i32))..(t.y1.min(band_y1 as i32));
         let first_block = t.x0 & !7;
         let block_count = (t.x1 - first_block + 7) / 8;
-        let lane_step: [i64; 3] = [0, 1, 2].map(|i| t.a[i] * SUBPIXEL_ONE);
-        let lane_offsets = lane_step.map(|s| I64x8::ramp(0, s));
-        let block_step = lane_step.map(|s| s * 8);
+        let lane_step = [
+            t.a[0] * SUBPIXEL_ONE,
+            t.a[1] * SUBPIXEL_ONE,
+            t.a[2] * SUBPIXEL_ONE,
+        ];
+        let lane_offsets = [
+            s.e_ramp(0, lane_step[0]),
+            s.e_ramp(0, lane_step[1]),
+            s.e_ramp(0, lane_step[2]),
+        ];
+        let block_step = [lane_step[0] * 8, lane_step[1] * 8, lane_step[2] * 8];
         let x_start = i64::from(first_block) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-        let width_mask_from = i64::from(width) - 8;
-        let plane_count = 2 + S::ATTRS;
-        let lanes_x = F32x8::LANE_INDEX + F32x8::splat((first_block - t.x0) as f32);
+        // The lanes of a row's last block that lie inside the image.
+        let last_block_x = first_block + (block_count - 1) * 8;
+        let last_block_bits = if last_block_x + 8 > width as i32 {
+            (1u32 << (width as i32 - last_block_x)) - 1
+        } else {
+            0xff
+        };
+        let plane_count = 2 + Sh::ATTRS;
+        let lanes_x = Vf::lanes(s) + Vf::splat(s, (first_block - t.x0) as f32);
+        let mut dx = [Vf::splat(s, 0.0); 2 + MAX_ATTRS];
+        for j in 0..plane_count {
+            dx[j] = Vf::splat(s, planes[j].dx);
+        }
 
         for y in rows {
             let y_centre = i64::from(y) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-            let mut e: [i64; 3] = [0, 1, 2].map(|i| t.a[i] * x_start + t.b[i] * y_centre + t.c[i]);
+            let mut e = [0i64; 3];
+            for i in 0..3 {
+                e[i] = t.a[i] * x_start + t.b[i] * y_centre + t.c[i];
+            }
             let dy = (y - t.y0) as f32;
             let mut row_value = [0f32; 2 + MAX_ATTRS];
             for j in 0..plane_count {
@@ -297,74 +399,74 @@ impl Band {
             }
             let row_start = (y as u32 - band_y0) as usize * self.stride;
             for block in 0..block_count {
-                let mut mask = I64x8::all_non_negative(
-                    lane_offsets[0].add_scalar(e[0]),
-                    lane_offsets[1].add_scalar(e[1]),
-                    lane_offsets[2].add_scalar(e[2]),
+                let mut bits = s.e_inside(
+                    s.e_add(lane_offsets[0], e[0]),
+                    s.e_add(lane_offsets[1], e[1]),
+                    s.e_add(lane_offsets[2], e[2]),
                 );
                 for i in 0..3 {
                     e[i] += block_step[i];
                 }
-                let bx = first_block + block * 8;
-                if i64::from(bx) > width_mask_from {
-                    mask = mask & Mask8::first(i64::from(width) - i64::from(bx));
+                if block == block_count - 1 {
+                    bits &= last_block_bits;
                 }
-                if !mask.any() {
+                if bits == 0 {
                     continue;
                 }
-                let at = row_start + bx as usize;
+                let at = row_start + (first_block + block * 8) as usize;
                 if t.once != 0 {
-                    mask = self.once_per_pixel(mask, at, t.once);
+                    bits = self.once_per_pixel(bits, at, t.once);
                 }
                 if pass == Pass::Count {
                     for (i, count) in self.counts[at..at + 8].iter_mut().enumerate() {
-                        *count += (mask.0[i] as u32) >> 31;
+                        *count += (bits >> i) & 1;
                     }
                     continue;
                 }
-                let x = lanes_x + F32x8::splat((block * 8) as f32);
-                let value = |j: usize| F32x8::splat(row_value[j]) + x * planes[j].dx;
-                let depth = value(0);
-                let stored = F32x8::load(&self.depth[at..at + 8]);
-                let pass_mask = mask & depth.lt(stored);
-                if !pass_mask.any() {
+                let x = lanes_x + Vf::splat(s, (block * 8) as f32);
+                let depth = x.mul_add(dx[0], Vf::splat(s, row_value[0]));
+                let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
+                let stored = Vf::load(s, depth_slot);
+                let bits = bits & depth.lt(stored).mask_bits();
+                if bits == 0 {
                     continue;
                 }
-                F32x8::select(pass_mask, depth, stored).store(&mut self.depth[at..at + 8]);
-                self.fragments += u64::from(pass_mask.bits().count_ones());
+                let mask = Vi::from_mask_bits(s, bits);
+                Vf::select(mask, depth, stored).store(depth_slot);
+                self.fragments += u64::from(bits.count_ones());
 
-                let mut attrs = [F32x8::splat(0.0); MAX_ATTRS];
+                let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
                 match interpolation {
-                    Interpolation::Perspective if S::ATTRS > 0 => {
-                        let w = F32x8::splat(1.0).div(value(1));
-                        for (k, attr) in attrs.iter_mut().enumerate().take(S::ATTRS) {
-                            *attr = value(2 + k) * w;
+                    Interpolation::Perspective if Sh::ATTRS > 0 => {
+                        let inv_w = x.mul_add(dx[1], Vf::splat(s, row_value[1]));
+                        let w = inv_w.recip();
+                        for k in 0..Sh::ATTRS {
+                            attrs[k] = x.mul_add(dx[2 + k], Vf::splat(s, row_value[2 + k])) * w;
                         }
                     }
                     _ => {
-                        for (k, attr) in attrs.iter_mut().enumerate().take(S::ATTRS) {
-                            *attr = value(2 + k);
+                        for k in 0..Sh::ATTRS {
+                            attrs[k] = x.mul_add(dx[2 + k], Vf::splat(s, row_value[2 + k]));
                         }
                     }
                 }
-                let colors = shader.shade(t, &attrs);
-                let old = &mut self.color[at..at + 8];
-                for i in 0..8 {
-                    old[i] = (colors[i] & pass_mask.0[i]) | (old[i] & !pass_mask.0[i]);
-                }
+                let colors = shader.shade(s, t, &attrs);
+                let color_slot: &mut [i32; 8] = (&mut self.color[at..at + 8]).try_into().unwrap();
+                let old = Vi(s.i_load(color_slot), s);
+                s.i_store(Vi::select(mask, colors, old).0, color_slot);
             }
         }
     }
 
     /// Drops the lanes a self-crossing polygon already drew, and marks the rest.
     #[cold]
-    fn once_per_pixel(&mut self, mask: Mask8, at: usize, polygon: u32) -> Mask8 {
+    fn once_per_pixel(&mut self, bits: u32, at: usize, polygon: u32) -> u32 {
         let stamps = self.stamps();
-        let mut out = mask;
+        let mut out = bits;
         for i in 0..8 {
-            if mask.0[i] != 0 {
+            if bits & (1 << i) != 0 {
                 if stamps[at + i] == polygon {
-                    out.0[i] = 0;
+                    out &= !(1 << i);
                 } else {
                     stamps[at + i] = polygon;
                 }

@@ -42,7 +42,7 @@ use crate::lighting::{Lighting, Terms};
 use crate::normals::face_normal;
 use crate::raster::{fan, signed_area_ccw, ScreenVertex};
 use crate::render::{guard_band, to_window, RenderOptions, RenderStats, Scene, Shading};
-use crate::simd::{dispatch, Kernel, SimdLevel};
+use crate::simd::{dispatch, Kernel, Simd, SimdLevel};
 
 /// The tiled rasterizer's buffers, reused from frame to frame.
 #[derive(Debug)]
@@ -51,6 +51,7 @@ pub(crate) struct TiledRasterizer {
     /// Per mesh position: clip-space position, window position, inside flag.
     projected: Vec<Projected>,
     vertices: VertexTable,
+    faces: FaceNormals,
     /// Gouraud colours per distinct vertex, front and (culling off) back.
     lit: Vec<[f32; 3]>,
     lit_back: Vec<[f32; 3]>,
@@ -85,7 +86,6 @@ struct Chunk {
     /// Per band, indices into `triangles`, in submission order.
     bins: Vec<Vec<u32>>,
     stats: RenderStats,
-    points: Vec<Vec3>,
     input: Vec<ClipVertex<MAX_ATTRS>>,
     clipped: Vec<ClipVertex<MAX_ATTRS>>,
     scratch: Vec<ClipVertex<MAX_ATTRS>>,
@@ -144,6 +144,40 @@ impl VertexTable {
     }
 }
 
+/// Each polygon's unit face normal (`None` when degenerate), recomputed
+/// only when the mesh changes.
+#[derive(Debug, Default)]
+struct FaceNormals {
+    key_positions: Vec<Vec3>,
+    key_corners: Vec<u32>,
+    normals: Vec<Option<Vec3>>,
+}
+
+impl FaceNormals {
+    fn update(&mut self, mesh: &crate::mesh::Mesh) {
+        if self.key_positions == mesh.positions() && self.key_corners == mesh.corners() {
+            return;
+        }
+        self.key_positions.clear();
+        self.key_positions.extend_from_slice(mesh.positions());
+        self.key_corners.clear();
+        self.key_corners.extend_from_slice(mesh.corners());
+        self.normals.resize(mesh.polygon_count(), None);
+        self.normals
+            .par_chunks_mut(1024)
+            .enumerate()
+            .for_each(|(k, normals)| {
+                let mut points = Vec::new();
+                for (i, normal) in normals.iter_mut().enumerate() {
+                    points.clear();
+                    let polygon = mesh.polygon(k * 1024 + i);
+                    points.extend(polygon.iter().map(|&v| mesh.positions()[v as usize]));
+                    *normal = face_normal(&points);
+                }
+            });
+    }
+}
+
 /// What setup needs to know about the frame.
 struct Frame<'a> {
     scene: &'a Scene,
@@ -151,6 +185,7 @@ struct Frame<'a> {
     lighting: &'a Lighting,
     projected: &'a [Projected],
     corner_vertex: &'a [u32],
+    faces: &'a [Option<Vec3>],
     lit: &'a [[f32; 3]],
     lit_back: &'a [[f32; 3]],
     guard: f32,
@@ -238,35 +273,48 @@ impl Chunk {
         let mesh = &frame.scene.mesh;
         let attrs = frame.attr_count();
         for face in faces {
-            self.points.clear();
-            self.points.extend(
-                mesh.polygon(face)
-                    .iter()
-                    .map(|&i| mesh.positions()[i as usize]),
-            );
-            let Some(normal) = face_normal(&self.points) else {
+            let Some(normal) = frame.faces[face] else {
                 self.stats.degenerate += 1;
                 continue;
             };
-            self.project(frame, face, false);
-            let area = signed_area_ccw(&self.window);
-            if self.window.len() < 3 || area == 0 {
+            // Facing first, from the projected positions when no clipping is
+            // needed, so that culled polygons cost no attribute work.
+            let corners = &mesh.corners()[mesh.corner_range(face)];
+            let unclipped = corners.iter().all(|&p| frame.projected[p as usize].inside);
+            let area = if unclipped {
+                window_area(frame.projected, corners)
+            } else {
+                self.project(frame, face, false);
+                if self.window.len() < 3 {
+                    0
+                } else {
+                    signed_area_ccw(&self.window)
+                }
+            };
+            if area == 0 {
                 self.stats.invisible += 1;
                 continue;
             }
             let back = area < 0;
+            if back && options.cull_backfaces {
+                self.stats.culled += 1;
+                continue;
+            }
+            if back || unclipped {
+                self.project(frame, face, back);
+            }
             if back {
-                if options.cull_backfaces {
-                    self.stats.culled += 1;
-                    continue;
-                }
-                self.project(frame, face, true);
                 self.window.reverse();
             }
             self.stats.rasterized += 1;
             let color = if options.shading == Shading::Flat {
                 self.stats.lighting_evaluations += 1;
-                let centroid = self.points.iter().sum::<Vec3>() / self.points.len() as f32;
+                let polygon = mesh.polygon(face);
+                let centroid = polygon
+                    .iter()
+                    .map(|&i| mesh.positions()[i as usize])
+                    .sum::<Vec3>()
+                    / polygon.len() as f32;
                 let normal = if back { -normal } else { normal };
                 let Rgb8([r, g, b]) =
                     Rgb8::from_rgb(frame.lighting.eval(centroid, normal, Terms::Full));
@@ -307,6 +355,27 @@ impl Chunk {
     }
 }
 
+/// Twice the signed area of a polygon's projected, snapped positions
+/// (as [`signed_area_ccw`] of its window polygon).
+fn window_area(projected: &[Projected], corners: &[u32]) -> i128 {
+    let n = corners.len();
+    let mut sum: i128 = 0;
+    for i in 0..n {
+        let a = &projected[corners[i] as usize].window;
+        let b = &projected[corners[(i + 1) % n] as usize].window;
+        sum += a.x as i128 * b.y as i128 - b.x as i128 * a.y as i128;
+    }
+    -sum
+}
+
+/// Where a band's result goes.
+enum Output<'a> {
+    /// Image rows, and the background colour packed as in the band.
+    Image(&'a mut [Rgb8], i32),
+    /// Coverage counts.
+    Counts(&'a mut [u32]),
+}
+
 /// One band's work, compiled per SIMD level.
 struct BandKernel<'a, S> {
     band: &'a mut Band,
@@ -314,24 +383,27 @@ struct BandKernel<'a, S> {
     chunks: &'a [Chunk],
     shader: &'a S,
     options: &'a RenderOptions,
-    pass: Pass,
+    output: Output<'a>,
 }
 
 impl<S: Shader> Kernel for BandKernel<'_, S> {
     type Output = ();
 
     #[inline(always)]
-    fn run(self) {
+    fn run<Sd: Simd>(self, simd: Sd) {
         let o = self.options;
         let (y0, y1) = band_rows(self.index, o.height);
-        let Rgb8([r, g, b]) = o.background;
-        let background = i32::from(r) | i32::from(g) << 8 | i32::from(b) << 16;
-        self.band.begin(o.width, y1 - y0, background, self.pass);
+        let pass = match self.output {
+            Output::Image(..) => Pass::Shade,
+            Output::Counts(_) => Pass::Count,
+        };
+        self.band.begin(o.width, y1 - y0, pass);
         let stride = 2 + S::ATTRS;
         for chunk in self.chunks {
             for &t in &chunk.bins[self.index] {
                 let t = t as usize;
                 self.band.draw(
+                    simd,
                     &chunk.triangles[t],
                     &chunk.planes[t * stride..(t + 1) * stride],
                     self.shader,
@@ -339,11 +411,38 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                     y0,
                     y1,
                     o.width,
-                    self.pass,
+                    pass,
                 );
             }
         }
+        match self.output {
+            Output::Image(pixels, background) => {
+                self.band.finish(simd, pixels, o.width, background)
+            }
+            Output::Counts(counts) => self.band.finish_counts(counts, o.width),
+        }
     }
+}
+
+/// Runs one band of a pass with the shader `S`, compiled for the SIMD level.
+fn band_pass<S: Shader>(
+    simd: SimdLevel,
+    band: &mut Band,
+    index: usize,
+    chunks: &[Chunk],
+    shader: &S,
+    options: &RenderOptions,
+    output: Output<'_>,
+) {
+    let kernel = BandKernel {
+        band,
+        index,
+        chunks,
+        shader,
+        options,
+        output,
+    };
+    dispatch(simd, kernel);
 }
 
 impl TiledRasterizer {
@@ -356,6 +455,7 @@ impl TiledRasterizer {
             },
             projected: Vec::new(),
             vertices: VertexTable::default(),
+            faces: FaceNormals::default(),
             lit: Vec::new(),
             lit_back: Vec::new(),
             chunks: Vec::new(),
@@ -378,40 +478,24 @@ impl TiledRasterizer {
         let mut stats = self.geometry(scene, options, lighting);
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
-        let pixels = image
+        let Rgb8([r, g, b]) = options.background;
+        let background = i32::from(r) | i32::from(g) << 8 | i32::from(b) << 16;
+        let phong = PhongShader::new(lighting);
+        let bands = image
             .pixels_mut()
-            .par_chunks_mut(width * BAND_ROWS as usize);
-        let run = |shader: &(dyn Fn(&mut Band, usize) + Sync)| {
-            pixels
-                .zip(self.bands.par_iter_mut())
-                .enumerate()
-                .for_each(|(index, (out, band))| {
-                    shader(band, index);
-                    band.finish(out, options.width);
-                });
-        };
-        match options.shading {
-            Shading::Flat => run(&|band, index| {
-                band_pass(band, index, chunks, &FlatShader, options, Pass::Shade, simd)
-            }),
-            Shading::Gouraud => run(&|band, index| {
-                band_pass(
-                    band,
-                    index,
-                    chunks,
-                    &GouraudShader,
-                    options,
-                    Pass::Shade,
-                    simd,
-                )
-            }),
-            Shading::Phong => {
-                let shader = PhongShader::new(lighting);
-                run(&|band, index| {
-                    band_pass(band, index, chunks, &shader, options, Pass::Shade, simd)
-                })
+            .par_chunks_mut(width * BAND_ROWS as usize)
+            .zip(self.bands.par_iter_mut())
+            .enumerate();
+        bands.for_each(|(index, (pixels, band))| {
+            let output = Output::Image(pixels, background);
+            match options.shading {
+                Shading::Flat => band_pass(simd, band, index, chunks, &FlatShader, options, output),
+                Shading::Gouraud => {
+                    band_pass(simd, band, index, chunks, &GouraudShader, options, output)
+                }
+                Shading::Phong => band_pass(simd, band, index, chunks, &phong, options, output),
             }
-        }
+        });
         for band in &self.bands {
             stats.fragments_shaded += band.fragments;
             stats.covered_pixels += band.covered;
@@ -442,16 +526,8 @@ impl TiledRasterizer {
             .zip(self.bands.par_iter_mut())
             .enumerate()
             .for_each(|(index, (out, band))| {
-                band_pass(
-                    band,
-                    index,
-                    chunks,
-                    &FlatShader,
-                    &options,
-                    Pass::Count,
-                    simd,
-                );
-                band.finish_counts(out, options.width);
+                let output = Output::Counts(out);
+                band_pass(simd, band, index, chunks, &FlatShader, &options, output);
             });
         counts
     }
@@ -496,6 +572,7 @@ impl TiledRasterizer {
             evaluations = self.light_vertices(scene, options, lighting);
         }
 
+        self.faces.update(mesh);
         let bands = height.div_ceil(BAND_ROWS) as usize;
         self.bands.resize_with(bands, Band::default);
         self.bands.truncate(bands);
@@ -508,6 +585,7 @@ impl TiledRasterizer {
             lighting,
             projected: &self.projected,
             corner_vertex: &self.vertices.corner_vertex,
+            faces: &self.faces.normals,
             lit: &self.lit,
             lit_back: &self.lit_back,
             guard,
@@ -582,27 +660,4 @@ impl TiledRasterizer {
             2 * table.used
         }
     }
-}
-
-/// Runs one band of a pass, compiled for the SIMD level.
-fn band_pass<S: Shader>(
-    band: &mut Band,
-    index: usize,
-    chunks: &[Chunk],
-    shader: &S,
-    options: &RenderOptions,
-    pass: Pass,
-    simd: SimdLevel,
-) {
-    dispatch(
-        simd,
-        BandKernel {
-            band,
-            index,
-            chunks,
-            shader,
-            options,
-            pass,
-        },
-    );
 }

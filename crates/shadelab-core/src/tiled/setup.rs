@@ -20,7 +20,7 @@
 use crate::raster::{Interpolation, ScreenVertex, SUBPIXEL_HALF, SUBPIXEL_ONE};
 
 /// Image rows per band: the unit of binning and of parallel work.
-pub(crate) const BAND_ROWS: u32 = 32;
+pub(crate) const BAND_ROWS: u32 = 16;
 
 /// An affine function of the pixel position: `at_origin + dx·(x − x0) + dy·(y − y0)`
 /// for pixel (x, y) and the triangle's first pixel (x0, y0).
