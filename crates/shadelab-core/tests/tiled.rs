@@ -196,7 +196,7 @@ fn camera_inside_a_mesh_and_clipped_floors_match() {
             Vec3::new(1e6, -1.0, 1e6),
             Vec3::new(1e6, -1.0, -1e6),
         ],
-        &[[0u32, 1, 2, 3]],
+        [[0u32, 1, 2, 3]],
     )
     .unwrap();
     let up = CornerNormals {
