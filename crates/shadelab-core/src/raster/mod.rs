@@ -16,7 +16,49 @@ pub const SUBPIXEL_HALF: i64 = SUBPIXEL_ONE / 2;
 
 /// Snaps a window coordinate (in pixels) to the fixed-point grid.
 pub fn snap(pixels: f64) -> i64 {
-    (pixels * SUBPIXEL_ONE as f64).round() as i64
+    // `f64::round` (half away from zero) without a libm call: truncate, then
+    // step away from zero when the remainder is at least one half. Exact for
+    // |x| < 2^52; beyond i64 the casts saturate, as `round() as i64` does.
+    let x = pixels * SUBPIXEL_ONE as f64;
+    let t = x as i64;
+    let rest = x - t as f64;
+    if rest >= 0.5 {
+        t.saturating_add(1)
+    } else if rest <= -0.5 {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn snap_rounds_half_away_from_zero() {
+        for x in [
+            0.0,
+            0.5,
+            -0.5,
+            1.5,
+            -1.5,
+            2.49999,
+            -2.50001,
+            1e9 + 0.5,
+            -7.25,
+            1e30,
+            -1e30,
+        ] {
+            for scale in [1.0, 1.0 / 256.0] {
+                let pixels = x * scale;
+                assert_eq!(
+                    super::snap(pixels),
+                    (pixels * 256.0).round() as i64,
+                    "{pixels}"
+                );
+            }
+        }
+        assert_eq!(super::snap(f64::NAN), 0);
+    }
 }
 
 /// How attributes are interpolated across a polygon.

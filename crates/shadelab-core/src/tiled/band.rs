@@ -165,7 +165,19 @@ impl Shader for PhongShader {
     #[inline(always)]
     fn shade<S: Simd>(&self, s: S, triangle: &Triangle, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
         let flip = triangle.flip;
-        let n = normalize_or_zero([a[0] * flip, a[1] * flip, a[2] * flip]);
+        self.light(
+            s,
+            &[a[0] * flip, a[1] * flip, a[2] * flip, a[3], a[4], a[5]],
+        )
+    }
+}
+
+impl PhongShader {
+    /// The reflection model at 8 points `a[3..6]` with normals `a[0..3]`
+    /// (normalized here), as packed colours.
+    #[inline(always)]
+    pub fn light<S: Simd>(&self, s: S, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
+        let n = normalize_or_zero([a[0], a[1], a[2]]);
         let p = [a[3], a[4], a[5]];
         let view = towards(s, self.eye, &p);
         let mut out = [

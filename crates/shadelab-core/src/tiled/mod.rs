@@ -42,14 +42,16 @@ use crate::lighting::{Lighting, Terms};
 use crate::normals::face_normal;
 use crate::raster::{fan, signed_area_ccw, ScreenVertex};
 use crate::render::{guard_band, to_window, RenderOptions, RenderStats, Scene, Shading};
-use crate::simd::{dispatch, Kernel, Simd, SimdLevel};
+use crate::simd::{dispatch, Kernel, Simd, SimdLevel, Vf};
 
 /// The tiled rasterizer's buffers, reused from frame to frame.
 #[derive(Debug)]
 pub(crate) struct TiledRasterizer {
     simd: SimdLevel,
-    /// Per mesh position: clip-space position, window position, inside flag.
+    /// Per mesh position: its snapped window position (16 bytes, so that
+    /// setup's random accesses stay in cache) and its clip-space position.
     projected: Vec<Projected>,
+    clip: Vec<Vec4>,
     vertices: VertexTable,
     faces: FaceNormals,
     /// Gouraud colours per distinct vertex, front and (culling off) back.
@@ -59,22 +61,22 @@ pub(crate) struct TiledRasterizer {
     bands: Vec<Band>,
 }
 
+/// A vertex's window position, when it is inside the view volume and guard
+/// band (`x == OUTSIDE` otherwise). Snapped coordinates stay within ±2^29,
+/// so they fit in `i32`.
 #[derive(Debug, Clone, Copy, Default)]
 struct Projected {
-    clip: Vec4,
-    window: ScreenVertex<0>,
-    inside: bool,
+    x: i32,
+    y: i32,
+    depth: f32,
+    inv_w: f32,
 }
 
-impl Default for ScreenVertex<0> {
-    fn default() -> Self {
-        ScreenVertex {
-            x: 0,
-            y: 0,
-            depth: 0.0,
-            inv_w: 0.0,
-            attrs: [],
-        }
+impl Projected {
+    const OUTSIDE: i32 = i32::MIN;
+
+    fn inside(&self) -> bool {
+        self.x != Projected::OUTSIDE
     }
 }
 
@@ -90,6 +92,10 @@ struct Chunk {
     clipped: Vec<ClipVertex<MAX_ATTRS>>,
     scratch: Vec<ClipVertex<MAX_ATTRS>>,
     window: Vec<ScreenVertex<MAX_ATTRS>>,
+    /// Flat shading: each front polygon's unit normal and centroid, lit in
+    /// SIMD batches once setup is done; triangles hold an index until then.
+    flat_surfaces: Vec<[f32; 6]>,
+    flat_colors: Vec<i32>,
 }
 
 /// Distinct (position, normal) pairs of a mesh, rebuilt only when the
@@ -182,10 +188,12 @@ impl FaceNormals {
 struct Frame<'a> {
     scene: &'a Scene,
     options: &'a RenderOptions,
-    lighting: &'a Lighting,
     projected: &'a [Projected],
+    clip: &'a [Vec4],
     corner_vertex: &'a [u32],
     faces: &'a [Option<Vec3>],
+    phong: &'a PhongShader,
+    simd: SimdLevel,
     lit: &'a [[f32; 3]],
     lit_back: &'a [[f32; 3]],
     guard: f32,
@@ -230,13 +238,13 @@ impl Chunk {
         self.window.clear();
         let inside = mesh.corners()[range.clone()]
             .iter()
-            .all(|&p| frame.projected[p as usize].inside);
+            .all(|&p| frame.projected[p as usize].inside());
         if inside {
             for c in range {
-                let w = frame.projected[mesh.corners()[c] as usize].window;
+                let w = frame.projected[mesh.corners()[c] as usize];
                 self.window.push(ScreenVertex {
-                    x: w.x,
-                    y: w.y,
+                    x: i64::from(w.x),
+                    y: i64::from(w.y),
                     depth: w.depth,
                     inv_w: w.inv_w,
                     attrs: frame.corner_attrs(c, back),
@@ -247,7 +255,7 @@ impl Chunk {
         self.input.clear();
         for c in range {
             self.input.push(ClipVertex {
-                clip: frame.projected[mesh.corners()[c] as usize].clip,
+                clip: frame.clip[mesh.corners()[c] as usize],
                 attrs: frame.corner_attrs(c, back),
             });
         }
@@ -272,6 +280,7 @@ impl Chunk {
         let options = frame.options;
         let mesh = &frame.scene.mesh;
         let attrs = frame.attr_count();
+        self.flat_surfaces.clear();
         for face in faces {
             let Some(normal) = frame.faces[face] else {
                 self.stats.degenerate += 1;
@@ -280,7 +289,9 @@ impl Chunk {
             // Facing first, from the projected positions when no clipping is
             // needed, so that culled polygons cost no attribute work.
             let corners = &mesh.corners()[mesh.corner_range(face)];
-            let unclipped = corners.iter().all(|&p| frame.projected[p as usize].inside);
+            let unclipped = corners
+                .iter()
+                .all(|&p| frame.projected[p as usize].inside());
             let area = if unclipped {
                 window_area(frame.projected, corners)
             } else {
@@ -308,17 +319,16 @@ impl Chunk {
             }
             self.stats.rasterized += 1;
             let color = if options.shading == Shading::Flat {
-                self.stats.lighting_evaluations += 1;
                 let polygon = mesh.polygon(face);
                 let centroid = polygon
                     .iter()
                     .map(|&i| mesh.positions()[i as usize])
                     .sum::<Vec3>()
                     / polygon.len() as f32;
-                let normal = if back { -normal } else { normal };
-                let Rgb8([r, g, b]) =
-                    Rgb8::from_rgb(frame.lighting.eval(centroid, normal, Terms::Full));
-                u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16
+                let n = if back { -normal } else { normal };
+                let p = centroid;
+                self.flat_surfaces.push([n.x, n.y, n.z, p.x, p.y, p.z]);
+                (self.flat_surfaces.len() - 1) as u32
             } else {
                 0
             };
@@ -352,6 +362,53 @@ impl Chunk {
                 self.triangles.push(t);
             }
         }
+        if options.shading == Shading::Flat {
+            self.light_flat_polygons(frame);
+        }
+    }
+
+    /// Lights the front polygons of flat shading, 8 at a time, and gives
+    /// their triangles the colour.
+    fn light_flat_polygons(&mut self, frame: &Frame<'_>) {
+        self.stats.lighting_evaluations += self.flat_surfaces.len() as u64;
+        self.flat_colors.clear();
+        self.flat_colors
+            .resize(self.flat_surfaces.len().next_multiple_of(8), 0);
+        let kernel = FlatKernel {
+            surfaces: &self.flat_surfaces,
+            colors: &mut self.flat_colors,
+            shader: frame.phong,
+        };
+        dispatch(frame.simd, kernel);
+        for t in &mut self.triangles {
+            t.color = self.flat_colors[t.color as usize] as u32;
+        }
+    }
+}
+
+/// Flat shading's lighting, 8 polygons per SIMD evaluation.
+struct FlatKernel<'a> {
+    surfaces: &'a [[f32; 6]],
+    colors: &'a mut [i32],
+    shader: &'a PhongShader,
+}
+
+impl Kernel for FlatKernel<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) {
+        for (surfaces, colors) in self.surfaces.chunks(8).zip(self.colors.chunks_exact_mut(8)) {
+            let mut lanes = [[0f32; 8]; 6];
+            for (i, surface) in surfaces.iter().enumerate() {
+                for k in 0..6 {
+                    lanes[k][i] = surface[k];
+                }
+            }
+            let attrs: [Vf<S>; MAX_ATTRS] = std::array::from_fn(|k| Vf::load(s, &lanes[k]));
+            let packed = self.shader.light(s, &attrs);
+            s.i_store(packed.0, colors.try_into().unwrap());
+        }
     }
 }
 
@@ -361,8 +418,8 @@ fn window_area(projected: &[Projected], corners: &[u32]) -> i128 {
     let n = corners.len();
     let mut sum: i128 = 0;
     for i in 0..n {
-        let a = &projected[corners[i] as usize].window;
-        let b = &projected[corners[(i + 1) % n] as usize].window;
+        let a = &projected[corners[i] as usize];
+        let b = &projected[corners[(i + 1) % n] as usize];
         sum += a.x as i128 * b.y as i128 - b.x as i128 * a.y as i128;
     }
     -sum
@@ -454,6 +511,7 @@ impl TiledRasterizer {
                 SimdLevel::Portable
             },
             projected: Vec::new(),
+            clip: Vec::new(),
             vertices: VertexTable::default(),
             faces: FaceNormals::default(),
             lit: Vec::new(),
@@ -547,22 +605,28 @@ impl TiledRasterizer {
 
         let positions = mesh.positions();
         self.projected.resize(positions.len(), Projected::default());
+        self.clip.resize(positions.len(), Vec4::ZERO);
         self.projected
             .par_chunks_mut(4096)
+            .zip(self.clip.par_chunks_mut(4096))
             .zip(positions.par_chunks(4096))
-            .for_each(|(out, points)| {
-                for (o, p) in out.iter_mut().zip(points) {
+            .for_each(|((out, clips), points)| {
+                for ((o, c), p) in out.iter_mut().zip(clips).zip(points) {
                     let clip = view_projection * p.extend(1.0);
-                    let inside = clip.is_finite() && is_inside(clip, guard);
-                    let window = if inside {
-                        to_window(&ClipVertex { clip, attrs: [] }, width, height)
+                    *c = clip;
+                    *o = if clip.is_finite() && is_inside(clip, guard) {
+                        let w = to_window(&ClipVertex { clip, attrs: [] }, width, height);
+                        Projected {
+                            x: w.x as i32,
+                            y: w.y as i32,
+                            depth: w.depth,
+                            inv_w: w.inv_w,
+                        }
                     } else {
-                        ScreenVertex::default()
-                    };
-                    *o = Projected {
-                        clip,
-                        window,
-                        inside,
+                        Projected {
+                            x: Projected::OUTSIDE,
+                            ..Projected::default()
+                        }
                     };
                 }
             });
@@ -573,6 +637,7 @@ impl TiledRasterizer {
         }
 
         self.faces.update(mesh);
+        let phong = PhongShader::new(lighting);
         let bands = height.div_ceil(BAND_ROWS) as usize;
         self.bands.resize_with(bands, Band::default);
         self.bands.truncate(bands);
@@ -582,10 +647,12 @@ impl TiledRasterizer {
         let frame = Frame {
             scene,
             options,
-            lighting,
             projected: &self.projected,
+            clip: &self.clip,
             corner_vertex: &self.vertices.corner_vertex,
             faces: &self.faces.normals,
+            phong: &phong,
+            simd: self.simd,
             lit: &self.lit,
             lit_back: &self.lit_back,
             guard,

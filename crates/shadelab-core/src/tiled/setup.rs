@@ -96,13 +96,13 @@ impl Triangle {
         let (px, py) = (v.map(|v| pixel(v.x)), v.map(|v| pixel(v.y)));
         let (e1x, e1y) = (px[1] - px[0], py[1] - py[0]);
         let (e2x, e2y) = (px[2] - px[0], py[2] - py[0]);
-        let det = e1x * e2y - e2x * e1y;
+        let inv_det = 1.0 / (e1x * e2y - e2x * e1y);
         // Pixel centre of the first pixel, relative to vertex 0.
         let (ox, oy) = (x0 as f64 + 0.5 - px[0], y0 as f64 + 0.5 - py[0]);
         let mut plane = |q: [f64; 3]| {
             let (d1, d2) = (q[1] - q[0], q[2] - q[0]);
-            let dx = (d1 * e2y - d2 * e1y) / det;
-            let dy = (d2 * e1x - d1 * e2x) / det;
+            let dx = (d1 * e2y - d2 * e1y) * inv_det;
+            let dy = (d2 * e1x - d1 * e2x) * inv_det;
             planes.push(Plane {
                 at_origin: (q[0] + dx * ox + dy * oy) as f32,
                 dx: dx as f32,
