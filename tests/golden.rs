@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use shadelab_core::{render, Image, Rgb8};
+use shadelab_core::{render, Image, Rasterizer, Rgb8};
 use shadelab_io::{read_png, write_png, SceneFile};
 
 /// (name, scene) pairs; every scene is small so the set stays quick.
@@ -37,9 +37,11 @@ fn golden_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
 }
 
-fn render_case(scene: &str) -> Image {
+/// Renders a golden scene with `rasterizer`.
+fn render_case(scene: &str, rasterizer: Rasterizer) -> Image {
     let file = SceneFile::parse(scene, "golden scene").expect("golden scene parses");
-    let (scene, options) = file.resolve(Path::new(".")).expect("golden scene resolves");
+    let (scene, mut options) = file.resolve(Path::new(".")).expect("golden scene resolves");
+    options.rasterizer = rasterizer;
     render(&scene, &options).expect("golden scene renders").0
 }
 
@@ -69,7 +71,7 @@ fn golden_images_match() {
     let bless = std::env::var_os("BLESS").is_some();
     let mut failures = Vec::new();
     for (name, scene) in CASES {
-        let actual = render_case(scene);
+        let actual = render_case(scene, Rasterizer::Scanline);
         let path = golden_dir().join(format!("{name}.png"));
         if bless {
             write_png(&path, &actual).expect("write golden image");
@@ -111,4 +113,27 @@ fn golden_images_match() {
         "golden images differ:\n{}",
         failures.join("\n")
     );
+}
+
+/// The default (tiled) rasterizer stays within 1/255 of the scanline goldens,
+/// with identical coverage of the background.
+#[test]
+fn tiled_rasterizer_matches_the_golden_images_within_one_level() {
+    if std::env::var_os("BLESS").is_some() {
+        return; // the goldens are being rewritten by the other test
+    }
+    for (name, scene) in CASES {
+        let expected = read_png(&golden_dir().join(format!("{name}.png"))).expect("golden image");
+        let actual = render_case(scene, Rasterizer::Tiled);
+        for y in 0..expected.height() {
+            for x in 0..expected.width() {
+                let (a, e) = (actual.pixel(x, y).0, expected.pixel(x, y).0);
+                let worst = (0..3).map(|k| a[k].abs_diff(e[k])).max().unwrap();
+                assert!(
+                    worst <= 1,
+                    "{name}: tiled pixel ({x}, {y}) is {a:?}, golden {e:?}"
+                );
+            }
+        }
+    }
 }

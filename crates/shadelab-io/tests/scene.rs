@@ -5,7 +5,8 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use shadelab_core::{
-    Interpolation, LightKind, Mesh, RenderOptions, Rgb, Rgb8, Scene, Shading, BUILTIN_MODELS,
+    Interpolation, LightKind, Mesh, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8, Scene, Shading,
+    BUILTIN_MODELS,
 };
 use shadelab_io::{
     load_obj, InterpolationName, LightKindName, NormalsChoice, SceneError, SceneFile, ShadingName,
@@ -179,6 +180,8 @@ fn full_example_resolves() {
             cull_backfaces: true,
             gouraud_specular: false,
             interpolation: Interpolation::Perspective,
+            rasterizer: Rasterizer::Tiled,
+            polygons: Polygons::Fans,
         }
     );
     assert_eq!(scene.camera.eye, Vec3::new(0.0, 0.5, 3.0));
