@@ -4,7 +4,8 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use shadelab_io::{
-    InterpolationName, LightKindName, LightSection, NormalsChoice, SceneFile, ShadingName,
+    InterpolationName, LightKindName, LightSection, NormalsChoice, PolygonsName, RasterizerName,
+    SceneFile, ShadingName, SpecularName,
 };
 
 /// Flat, Gouraud and Phong shading on an exact CPU rasterizer.
@@ -119,6 +120,42 @@ pub struct SceneOverrides {
     /// Background colour, R,G,B in 0–255.
     #[arg(long, value_parser = parse_rgb)]
     pub background: Option<[i64; 3]>,
+    /// Which rasterizer draws: the tiled SIMD one (default) or the scanline reference.
+    #[arg(long, value_enum)]
+    pub rasterizer: Option<RasterizerArg>,
+    /// Polygons of more than three vertices as triangle fans, or whole (textbook, scanline only).
+    #[arg(long, value_enum)]
+    pub polygons: Option<PolygonsArg>,
+    /// The specular term: Phong's r·v or Blinn's n·h.
+    #[arg(long, value_enum)]
+    pub specular: Option<SpecularArg>,
+}
+
+/// `--rasterizer`
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum RasterizerArg {
+    /// The textbook scanline algorithm, one thread: the reference.
+    Scanline,
+    /// Edge functions over bands of rows, SIMD, all threads.
+    Tiled,
+}
+
+/// `--polygons`
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum PolygonsArg {
+    /// Triangle fans, each interpolated as a plane.
+    Fans,
+    /// Whole polygons, along edges and spans (scanline rasterizer only).
+    Whole,
+}
+
+/// `--specular`
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum SpecularArg {
+    /// max(0, r·v)^p
+    Phong,
+    /// max(0, n·h)^p
+    BlinnPhong,
 }
 
 /// `--shading`
@@ -304,6 +341,24 @@ impl SceneOverrides {
         }
         if self.background.is_some() {
             scene.render.background = self.background;
+        }
+        if let Some(r) = self.rasterizer {
+            scene.render.rasterizer = Some(match r {
+                RasterizerArg::Scanline => RasterizerName::Scanline,
+                RasterizerArg::Tiled => RasterizerName::Tiled,
+            });
+        }
+        if let Some(p) = self.polygons {
+            scene.render.polygons = Some(match p {
+                PolygonsArg::Fans => PolygonsName::Fans,
+                PolygonsArg::Whole => PolygonsName::Whole,
+            });
+        }
+        if let Some(s) = self.specular {
+            scene.render.specular = Some(match s {
+                SpecularArg::Phong => SpecularName::Phong,
+                SpecularArg::BlinnPhong => SpecularName::BlinnPhong,
+            });
         }
     }
 }

@@ -366,6 +366,12 @@ fn every_option_is_accepted() {
         "--gouraud-specular",
         "--background",
         "5,6,7",
+        "--rasterizer",
+        "scanline",
+        "--polygons",
+        "whole",
+        "--specular",
+        "blinn-phong",
     ];
     let mut args = vec!["render", "scene.toml", "--shading", "gouraud"];
     args.extend_from_slice(&overrides);
@@ -455,6 +461,31 @@ fn each_flag_changes_the_image() {
         &[&fine[..], &["--interpolation", "perspective"]].concat(),
     );
     assert_eq!(perspective, gouraud, "perspective is the default");
+
+    // The specular term's shape, on Phong's highlight.
+    let blinn = render("blinn", &["--specular", "blinn-phong"]);
+    assert_ne!(blinn, plain, "--specular blinn-phong changed nothing");
+    // Whole quads differ from fans under Gouraud; the tiled rasterizer
+    // draws fans only, so whole polygons need the scanline one.
+    let coarse_gouraud = ["--shading", "gouraud", "--detail", "6", "--yaw", "20"];
+    let fans = render(
+        "fans",
+        &[&coarse_gouraud[..], &["--rasterizer", "scanline"]].concat(),
+    );
+    let whole = render(
+        "whole",
+        &[
+            &coarse_gouraud[..],
+            &["--rasterizer", "scanline", "--polygons", "whole"],
+        ]
+        .concat(),
+    );
+    assert_ne!(whole, fans, "--polygons whole changed nothing");
+    let tiled = render(
+        "tiled",
+        &[&coarse_gouraud[..], &["--rasterizer", "tiled"]].concat(),
+    );
+    assert_eq!(tiled.drawn(BLACK), fans.drawn(BLACK), "same coverage");
 }
 
 #[test]

@@ -25,7 +25,7 @@ pub use camera::{Camera, CameraError};
 pub use clip::{clip_polygon, ClipVertex};
 pub use color::{Rgb, Rgb8};
 pub use image::Image;
-pub use lighting::{Light, LightKind, Lighting, Material, Terms};
+pub use lighting::{Light, LightKind, Lighting, Material, Specular, Terms};
 pub use mesh::{CornerNormals, Mesh, MeshError};
 pub use models::{builtin_model, builtin_model_info, ModelError, ModelInfo, BUILTIN_MODELS};
 pub use normals::{

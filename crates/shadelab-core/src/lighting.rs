@@ -4,6 +4,9 @@
 //! with `l` towards the light, `v` towards the eye, `r = 2(n·l)n − l`, and the
 //! specular term only where `n·l > 0`. This one function is what all three
 //! shading methods call; they differ only in where and how often.
+//!
+//! Blinn's variant ([`Specular::BlinnPhong`]) replaces `r·v` with `n·h`,
+//! `h = normalize(l + v)`: what OpenGL's fixed pipeline and most engines use.
 
 use glam::Vec3;
 
@@ -69,6 +72,26 @@ impl Light {
     }
 }
 
+/// The specular term's angle: Phong's reflection vector or Blinn's halfway vector.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Specular {
+    /// `max(0, r·v)^p` with `r = 2(n·l)n − l` (Phong, 1975).
+    #[default]
+    Phong,
+    /// `max(0, n·h)^p` with `h = normalize(l + v)` (Blinn, 1977).
+    BlinnPhong,
+}
+
+impl Specular {
+    /// The lower-case name used in files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Specular::Phong => "phong",
+            Specular::BlinnPhong => "blinn-phong",
+        }
+    }
+}
+
 /// Everything the reflection model needs besides the surface point.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Lighting {
@@ -80,6 +103,8 @@ pub struct Lighting {
     pub material: Material,
     /// The viewer's position, for `v`.
     pub eye: Vec3,
+    /// Phong's `r·v` or Blinn's `n·h`.
+    pub specular: Specular,
 }
 
 /// Which terms of the model to evaluate.
@@ -106,9 +131,11 @@ impl Lighting {
             let i = light.color * light.intensity;
             out += i * m.kd * n_dot_l;
             if terms == Terms::Full {
-                let r = normal * (2.0 * n_dot_l) - l;
-                let r_dot_v = r.dot(view).max(0.0);
-                out += i * m.ks * r_dot_v.powf(m.shininess);
+                let cosine = match self.specular {
+                    Specular::Phong => (normal * (2.0 * n_dot_l) - l).dot(view),
+                    Specular::BlinnPhong => normal.dot((l + view).normalize_or_zero()),
+                };
+                out += i * m.ks * cosine.max(0.0).powf(m.shininess);
             }
         }
         out

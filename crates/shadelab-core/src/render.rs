@@ -23,7 +23,7 @@ use crate::camera::{Camera, CameraError};
 use crate::clip::{clip_polygon, ClipVertex};
 use crate::color::{Rgb, Rgb8};
 use crate::image::Image;
-use crate::lighting::{Light, Lighting, Material, Terms};
+use crate::lighting::{Light, Lighting, Material, Specular, Terms};
 use crate::mesh::{CornerNormals, Mesh};
 use crate::normals::face_normals;
 use crate::raster::scanline::{rasterize_fan, rasterize_polygon};
@@ -154,6 +154,8 @@ pub struct RenderOptions {
     pub rasterizer: Rasterizer,
     /// Polygons as triangle fans or whole.
     pub polygons: Polygons,
+    /// Phong's `r·v` or Blinn's `n·h` in the specular term.
+    pub specular: Specular,
 }
 
 impl Default for RenderOptions {
@@ -168,6 +170,7 @@ impl Default for RenderOptions {
             interpolation: Interpolation::Perspective,
             rasterizer: Rasterizer::Tiled,
             polygons: Polygons::Fans,
+            specular: Specular::Phong,
         }
     }
 }
@@ -293,7 +296,7 @@ impl Renderer {
         if image.width() != options.width || image.height() != options.height {
             *image = Image::filled(options.width, options.height, options.background);
         }
-        let lighting = lighting(scene);
+        let lighting = lighting(scene, options);
         Ok(match options.rasterizer {
             Rasterizer::Tiled => self.tiled.render(scene, options, &lighting, image),
             Rasterizer::Scanline => {
@@ -321,7 +324,7 @@ impl Renderer {
         options: &RenderOptions,
     ) -> Result<Vec<u32>, RenderError> {
         validate(scene, options)?;
-        let lighting = lighting(scene);
+        let lighting = lighting(scene, options);
         Ok(match options.rasterizer {
             Rasterizer::Tiled => self.tiled.coverage(scene, options, &lighting),
             Rasterizer::Scanline => {
@@ -340,12 +343,13 @@ impl Renderer {
     }
 }
 
-fn lighting(scene: &Scene) -> Lighting {
+fn lighting(scene: &Scene, options: &RenderOptions) -> Lighting {
     Lighting {
         ambient: scene.ambient,
         lights: scene.lights.clone(),
         material: scene.material,
         eye: scene.camera.eye,
+        specular: options.specular,
     }
 }
 

@@ -8,7 +8,7 @@ use common::*;
 use glam::{DVec3, Vec3};
 use shadelab_core::{
     builtin_model, coverage, render, vertex_normals, Camera, Interpolation, Light, LightKind,
-    Material, Mesh, NormalWeighting, RenderOptions, Rgb, Rgb8, Shading,
+    Material, Mesh, NormalWeighting, RenderOptions, Rgb, Rgb8, Shading, Specular,
 };
 
 /// One triangle to draw, with its vertex normals, seen by a camera.
@@ -172,10 +172,13 @@ fn shade(
 #[test]
 fn single_triangle_every_method_and_interpolation() {
     let methods = [
-        (Shading::Flat, false),
-        (Shading::Gouraud, false),
-        (Shading::Gouraud, true),
-        (Shading::Phong, false),
+        (Shading::Flat, false, Specular::Phong),
+        (Shading::Gouraud, false, Specular::Phong),
+        (Shading::Gouraud, true, Specular::Phong),
+        (Shading::Phong, false, Specular::Phong),
+        (Shading::Flat, false, Specular::BlinnPhong),
+        (Shading::Gouraud, true, Specular::BlinnPhong),
+        (Shading::Phong, false, Specular::BlinnPhong),
     ];
     let mut report = Vec::new();
     for case in cases() {
@@ -209,15 +212,18 @@ fn single_triangle_every_method_and_interpolation() {
                 Mesh::from_polygons(order.map(|k| f(v[k])).to_vec(), [[0u32, 1, 2]]).unwrap();
             let normals = explicit_normals(&order.map(|k| f(case.normals[k] * sign)));
             let scene = scene(mesh, normals, case.camera);
-            let model = PhongModel::of_scene(&scene);
-
             for interpolation in [Interpolation::Perspective, Interpolation::Screen] {
                 if case.crosses_near && interpolation == Interpolation::Screen {
                     continue;
                 }
-                for (shading, gouraud_specular) in methods {
+                for (shading, gouraud_specular, specular) in methods {
+                    let model = PhongModel {
+                        blinn: specular == Specular::BlinnPhong,
+                        ..PhongModel::of_scene(&scene)
+                    };
                     let options = RenderOptions {
                         gouraud_specular,
+                        specular,
                         interpolation,
                         cull_backfaces: !back,
                         ..options(case.width, case.height, shading)
@@ -259,11 +265,12 @@ fn single_triangle_every_method_and_interpolation() {
                         }
                     }
                     let name = format!(
-                        "triangle-{}-{}-{}{}-{:?}",
+                        "triangle-{}-{}-{}{}-{}-{:?}",
                         case.name,
                         if back { "back" } else { "front" },
                         shading.name(),
                         if gouraud_specular { "-spec" } else { "" },
+                        specular.name(),
                         interpolation
                     );
                     let checked = ok(compare_images(&name, &image, &expected, 1.0));

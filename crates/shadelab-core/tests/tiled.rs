@@ -16,7 +16,8 @@ use glam::{DVec3, Vec3};
 use proptest::prelude::*;
 use shadelab_core::{
     builtin_model, vertex_normals, CornerNormals, Image, Interpolation, Mesh, NormalWeighting,
-    Polygons, Rasterizer, RenderOptions, Renderer, Scene, Shading, SimdLevel, BUILTIN_MODELS,
+    Polygons, Rasterizer, RenderOptions, Renderer, Scene, Shading, SimdLevel, Specular,
+    BUILTIN_MODELS,
 };
 
 /// Renders with both rasterizers (and the tiled one with both SIMD levels)
@@ -297,6 +298,7 @@ proptest! {
         shading in prop::sample::select(Shading::ALL.to_vec()),
         screen in any::<bool>(),
         cull in any::<bool>(),
+        blinn in any::<bool>(),
     ) {
         let cam = camera(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 50.0, 0.25, 30.0);
         let view = View::new(&cam, W, H);
@@ -307,6 +309,7 @@ proptest! {
             interpolation: if screen { Interpolation::Screen } else { Interpolation::Perspective },
             cull_backfaces: cull,
             gouraud_specular: true,
+            specular: if blinn { Specular::BlinnPhong } else { Specular::Phong },
             ..options(W, H, shading)
         };
         if let Err(e) = check_equivalent("one-triangle", &scene, &options) {

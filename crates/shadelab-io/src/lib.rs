@@ -17,7 +17,7 @@ pub use png::{encode_png, read_png, write_png};
 pub use scene::{
     model_path, AmbientSection, CameraSection, InterpolationName, LightKindName, LightSection,
     MaterialSection, ModelSection, NormalsChoice, PolygonsName, RasterizerName, RenderSection,
-    SceneError, SceneFile, ShadingName,
+    SceneError, SceneFile, ShadingName, SpecularName,
 };
 pub use stl::{load_stl, parse_stl};
 

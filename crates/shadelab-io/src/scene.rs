@@ -12,7 +12,7 @@ use serde::Deserialize;
 use shadelab_core::{
     builtin_model, builtin_model_info, vertex_normals, Camera, Interpolation, Light, LightKind,
     Material, Mesh, NormalWeighting, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8, Scene,
-    Shading, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
+    Shading, Specular, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
 };
 
 use crate::{load_mesh, LoadError};
@@ -178,6 +178,8 @@ pub struct RenderSection {
     pub rasterizer: Option<RasterizerName>,
     /// fans | whole; default fans.
     pub polygons: Option<PolygonsName>,
+    /// phong | blinn-phong: the specular term's `r·v` or `n·h`; default phong.
+    pub specular: Option<SpecularName>,
     /// Degrees to orbit the camera about its up axis; default 0.
     pub yaw: Option<f32>,
     /// Degrees to orbit the camera towards its up axis; default 0.
@@ -243,6 +245,25 @@ pub enum PolygonsName {
     Fans,
     /// Whole (scanline only).
     Whole,
+}
+
+/// A specular term's name in a file.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpecularName {
+    /// Phong's `r·v`.
+    Phong,
+    /// Blinn's `n·h`.
+    BlinnPhong,
+}
+
+impl From<SpecularName> for Specular {
+    fn from(s: SpecularName) -> Specular {
+        match s {
+            SpecularName::Phong => Specular::Phong,
+            SpecularName::BlinnPhong => Specular::BlinnPhong,
+        }
+    }
 }
 
 /// Why a scene could not be read or used.
@@ -360,6 +381,7 @@ impl SceneFile {
                 (None, Some(PolygonsName::Whole)) => Rasterizer::Scanline,
                 (None, _) => Rasterizer::Tiled,
             },
+            specular: r.specular.map(Specular::from).unwrap_or_default(),
         };
 
         let (mesh, default_crease) = self.load_model(base_dir)?;

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use shadelab_core::{
     Interpolation, LightKind, Mesh, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8, Scene, Shading,
-    BUILTIN_MODELS,
+    Specular, BUILTIN_MODELS,
 };
 use shadelab_io::{
     load_obj, InterpolationName, LightKindName, NormalsChoice, SceneError, SceneFile, ShadingName,
@@ -182,6 +182,7 @@ fn full_example_resolves() {
             interpolation: Interpolation::Perspective,
             rasterizer: Rasterizer::Tiled,
             polygons: Polygons::Fans,
+            specular: Specular::Phong,
         }
     );
     assert_eq!(scene.camera.eye, Vec3::new(0.0, 0.5, 3.0));
@@ -680,4 +681,17 @@ fn without_a_camera_the_mesh_is_normalised() {
     // The framing camera looks at the origin from +z.
     assert_eq!(scene.camera.target, Vec3::ZERO);
     assert!(scene.camera.eye.z > 1.0);
+}
+
+#[test]
+fn specular_term_by_name() {
+    for (text, want) in [
+        ("phong", Specular::Phong),
+        ("blinn-phong", Specular::BlinnPhong),
+    ] {
+        let (_, options) = resolved(&format!("[render]\nspecular = \"{text}\"\n"));
+        assert_eq!(options.specular, want);
+    }
+    let err = SceneFile::parse("[render]\nspecular = \"blinn\"\n", "s.toml").unwrap_err();
+    assert!(err.to_string().contains("specular"), "{err}");
 }

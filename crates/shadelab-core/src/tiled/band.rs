@@ -21,7 +21,7 @@
 use glam::Vec3;
 
 use super::setup::{Plane, Triangle, BAND_ROWS};
-use crate::lighting::{LightKind, Lighting};
+use crate::lighting::{LightKind, Lighting, Specular};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
 use crate::simd::{pow_unit, pow_whole, Simd, Vf, Vi};
 
@@ -78,6 +78,7 @@ pub(crate) struct PhongShader {
     lights: Vec<LaneLight>,
     shininess: f32,
     power: Power,
+    blinn: bool,
 }
 
 /// How `max(0, r·v)^p` is computed for the material's `p`.
@@ -127,6 +128,7 @@ impl PhongShader {
             lights,
             shininess: p,
             power,
+            blinn: lighting.specular == Specular::BlinnPhong,
         }
     }
 
@@ -197,16 +199,19 @@ impl PhongShader {
             };
             let n_dot_l = n[0].mul_add(l[0], n[1].mul_add(l[1], n[2] * l[2]));
             let lit = n_dot_l.gt(zero);
-            let twice = n_dot_l * 2.0;
-            let r = [
-                n[0] * twice - l[0],
-                n[1] * twice - l[1],
-                n[2] * twice - l[2],
-            ];
-            let r_dot_v = r[0]
-                .mul_add(view[0], r[1].mul_add(view[1], r[2] * view[2]))
-                .max(zero);
-            let spec = self.power(r_dot_v);
+            let cosine = if self.blinn {
+                let h = normalize_or_zero([l[0] + view[0], l[1] + view[1], l[2] + view[2]]);
+                n[0].mul_add(h[0], n[1].mul_add(h[1], n[2] * h[2]))
+            } else {
+                let twice = n_dot_l * 2.0;
+                let r = [
+                    n[0] * twice - l[0],
+                    n[1] * twice - l[1],
+                    n[2] * twice - l[2],
+                ];
+                r[0].mul_add(view[0], r[1].mul_add(view[1], r[2] * view[2]))
+            };
+            let spec = self.power(cosine.max(zero));
             for k in 0..3 {
                 let add = n_dot_l.mul_add(Vf::splat(s, light.diffuse[k]), spec * light.specular[k]);
                 out[k] = out[k] + Vf::select(lit, add, zero);

@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use glam::{DVec3, Vec3};
 use shadelab_core::{
     Camera, CornerNormals, Image, Interpolation, Light, LightKind, Material, Mesh, Polygons,
-    Rasterizer, RenderOptions, Rgb, Rgb8, Scene, Shading,
+    Rasterizer, RenderOptions, Rgb, Rgb8, Scene, Shading, Specular,
 };
 
 /// Snapped window units per pixel (1/256 pixel).
@@ -179,6 +179,8 @@ pub struct PhongModel {
     pub ks: DVec3,
     pub shininess: f64,
     pub eye: DVec3,
+    /// Blinn's `n·h` in place of Phong's `r·v`.
+    pub blinn: bool,
 }
 
 impl PhongModel {
@@ -202,10 +204,12 @@ impl PhongModel {
             ks: rgb(scene.material.ks),
             shininess: scene.material.shininess.into(),
             eye: d(scene.camera.eye),
+            blinn: false,
         }
     }
 
-    /// `I = Ia·Ka + Σ [Id·Kd·max(0, n·l) + Is·Ks·max(0, r·v)^p]`, unclamped,
+    /// `I = Ia·Ka + Σ [Id·Kd·max(0, n·l) + Is·Ks·max(0, r·v)^p]` (or Blinn's
+    /// `n·h` with `h = normalize(l + v)` in place of `r·v`), unclamped,
     /// with the specular term only when `specular` and only where `n·l > 0`.
     /// `n` must be a unit vector.
     pub fn eval(&self, p: DVec3, n: DVec3, specular: bool) -> DVec3 {
@@ -222,8 +226,12 @@ impl PhongModel {
             }
             out += intensity * self.kd * n_dot_l;
             if specular {
-                let r = 2.0 * n_dot_l * n - l;
-                out += intensity * self.ks * r.dot(v).max(0.0).powf(self.shininess);
+                let cosine = if self.blinn {
+                    n.dot((l + v).normalize())
+                } else {
+                    (2.0 * n_dot_l * n - l).dot(v)
+                };
+                out += intensity * self.ks * cosine.max(0.0).powf(self.shininess);
             }
         }
         out
@@ -325,6 +333,7 @@ pub fn options(width: u32, height: u32, shading: Shading) -> RenderOptions {
         interpolation: Interpolation::Perspective,
         rasterizer: rasterizer_under_test(),
         polygons: Polygons::Fans,
+        specular: Specular::Phong,
     }
 }
 
