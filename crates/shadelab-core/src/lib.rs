@@ -16,6 +16,8 @@ mod lighting;
 mod mesh;
 mod models;
 mod normals;
+mod palette;
+mod probe;
 pub mod raster;
 mod render;
 mod simd;
@@ -25,11 +27,18 @@ pub use camera::{Camera, CameraError};
 pub use clip::{clip_polygon, ClipVertex};
 pub use color::{Rgb, Rgb8};
 pub use image::Image;
-pub use lighting::{Light, LightKind, Lighting, Material, Specular, Terms};
+pub use lighting::{
+    Light, LightKind, LightTerm, Lighting, LightingTerms, Material, Specular, Terms,
+};
 pub use mesh::{CornerNormals, Mesh, MeshError};
 pub use models::{builtin_model, builtin_model_info, ModelError, ModelInfo, BUILTIN_MODELS};
 pub use normals::{
     face_normal, face_normal_unnormalized, face_normals, vertex_normals, NormalWeighting,
+};
+pub use palette::{Palette, PaletteShade};
+pub use probe::{
+    depth_buffer, probe, EdgeRecord, FragmentRecord, ProbeRequest, SpanRecord, SteppedRecord,
+    VertexRecord,
 };
 pub use raster::Interpolation;
 pub use render::{

@@ -116,7 +116,90 @@ pub enum Terms {
     AmbientDiffuse,
 }
 
+/// One light's part in [`Lighting::explain`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LightTerm {
+    /// Unit vector towards the light.
+    pub l: Vec3,
+    /// `n·l`; the light adds nothing when it is not positive.
+    pub n_dot_l: f32,
+    /// `Id = Is`: colour times intensity.
+    pub intensity: Rgb,
+    /// `Id·Kd·(n·l)`, zero when `n·l ≤ 0`.
+    pub diffuse: Rgb,
+    /// `r` (Phong) or `h` (Blinn), when the specular term was evaluated.
+    pub reflected: Option<Vec3>,
+    /// `r·v` or `n·h`, when the specular term was evaluated.
+    pub cosine: Option<f32>,
+    /// `Is·Ks·max(0, cosine)^p`, zero when not evaluated.
+    pub specular: Rgb,
+}
+
+/// The reflection model's terms at one point: [`Lighting::eval`] spelled out.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LightingTerms {
+    /// Unit vector towards the eye, `v`.
+    pub view: Vec3,
+    /// `Ia·Ka`.
+    pub ambient: Rgb,
+    /// Each light's diffuse and specular parts.
+    pub lights: Vec<LightTerm>,
+    /// Their sum, unclamped: bit for bit what [`Lighting::eval`] returns.
+    pub total: Rgb,
+}
+
 impl Lighting {
+    /// The terms of the model at `point` with unit normal `normal`, summed in
+    /// the same order as [`Lighting::eval`], so `total` equals its result exactly.
+    pub fn explain(&self, point: Vec3, normal: Vec3, terms: Terms) -> LightingTerms {
+        let m = &self.material;
+        let ambient = self.ambient * m.ka;
+        let mut out = ambient;
+        let view = (self.eye - point).normalize_or_zero();
+        let mut lights = Vec::with_capacity(self.lights.len());
+        for light in &self.lights {
+            let l = light.direction_from(point);
+            let n_dot_l = normal.dot(l);
+            let i = light.color * light.intensity;
+            let mut term = LightTerm {
+                l,
+                n_dot_l,
+                intensity: i,
+                diffuse: Rgb::BLACK,
+                reflected: None,
+                cosine: None,
+                specular: Rgb::BLACK,
+            };
+            if n_dot_l > 0.0 {
+                term.diffuse = i * m.kd * n_dot_l;
+                out += term.diffuse;
+                if terms == Terms::Full {
+                    let (reflected, cosine) = match self.specular {
+                        Specular::Phong => {
+                            let r = normal * (2.0 * n_dot_l) - l;
+                            (r, r.dot(view))
+                        }
+                        Specular::BlinnPhong => {
+                            let h = (l + view).normalize_or_zero();
+                            (h, normal.dot(h))
+                        }
+                    };
+                    term.reflected = Some(reflected);
+                    term.cosine = Some(cosine);
+                    term.specular = i * m.ks * cosine.max(0.0).powf(m.shininess);
+                    out += term.specular;
+                }
+            }
+            lights.push(term);
+        }
+        LightingTerms {
+            view,
+            ambient,
+            lights,
+            total: out,
+        }
+    }
+
     /// The reflected light at `point` with unit normal `normal`, unclamped.
     pub fn eval(&self, point: Vec3, normal: Vec3, terms: Terms) -> Rgb {
         let m = &self.material;

@@ -14,6 +14,11 @@
 //! back-facing polygon drawn with culling off is lit with its normals turned
 //! towards the viewer and re-wound, so the rasterizer only ever sees
 //! counter-clockwise polygons.
+//!
+//! Two modes of old hardware are drawn by the scanline rasterizer only:
+//! fixed-point attribute stepping ([`RenderOptions::fixed_point_bits`]) and
+//! the indexed palette ([`RenderOptions::palette`]). A probe (`probe.rs`)
+//! watches one frame through [`Target`]'s hooks, which default to nothing.
 
 use std::collections::HashMap;
 
@@ -26,7 +31,11 @@ use crate::image::Image;
 use crate::lighting::{Light, Lighting, Material, Specular, Terms};
 use crate::mesh::{CornerNormals, Mesh};
 use crate::normals::face_normals;
-use crate::raster::scanline::{rasterize_fan, rasterize_polygon};
+use crate::palette::Palette;
+use crate::raster::scanline::{
+    rasterize_fan_with, rasterize_polygon_with, ScanlineOptions, SpanTrace, MAX_FRACTION_BITS,
+    MIN_FRACTION_BITS,
+};
 use crate::raster::{signed_area_ccw, snap, FragmentSink, Interpolation, ScreenVertex};
 use crate::simd::SimdLevel;
 use crate::tiled::TiledRasterizer;
@@ -156,6 +165,22 @@ pub struct RenderOptions {
     pub polygons: Polygons,
     /// Phong's `r·v` or Blinn's `n·h` in the specular term.
     pub specular: Specular,
+    /// Step attributes in fixed point with this many fraction bits
+    /// (scanline only); `None`: floating point.
+    pub fixed_point_bits: Option<u32>,
+    /// Draw with an indexed palette of shades of the material colour
+    /// (scanline only); `None`: true colour.
+    pub palette: Option<Palette>,
+}
+
+impl RenderOptions {
+    /// Whether these options ask for something only the scanline rasterizer
+    /// draws: whole polygons, fixed-point stepping or a palette.
+    pub fn needs_scanline(&self) -> bool {
+        self.polygons == Polygons::Whole
+            || self.fixed_point_bits.is_some()
+            || self.palette.is_some()
+    }
 }
 
 impl Default for RenderOptions {
@@ -171,6 +196,8 @@ impl Default for RenderOptions {
             rasterizer: Rasterizer::Tiled,
             polygons: Polygons::Fans,
             specular: Specular::Phong,
+            fixed_point_bits: None,
+            palette: None,
         }
     }
 }
@@ -204,6 +231,22 @@ pub enum RenderError {
     /// The tiled rasterizer draws polygons as fans only.
     #[error("the tiled rasterizer draws polygons as triangle fans; whole polygons need the scanline rasterizer")]
     WholePolygonsNeedScanline,
+    /// A mode of the scanline rasterizer was asked of the tiled one.
+    #[error("{0} needs the scanline rasterizer")]
+    ScanlineOnly(&'static str),
+    /// The fixed-point fraction bits are out of range.
+    #[error(
+        "fixed-point fraction bits must be {MIN_FRACTION_BITS}..={MAX_FRACTION_BITS}, got {0}"
+    )]
+    FractionBits(u32),
+    /// The palette run does not fit a 256-entry palette.
+    #[error("a palette needs 2..=256 shades with offset + shades ≤ 256, got {shades} shades at offset {offset}")]
+    Palette {
+        /// Shades asked for.
+        shades: u32,
+        /// First entry asked for.
+        offset: u32,
+    },
 }
 
 /// What a frame cost and what it did.
@@ -343,7 +386,7 @@ impl Renderer {
     }
 }
 
-fn lighting(scene: &Scene, options: &RenderOptions) -> Lighting {
+pub(crate) fn lighting(scene: &Scene, options: &RenderOptions) -> Lighting {
     Lighting {
         ambient: scene.ambient,
         lights: scene.lights.clone(),
@@ -353,9 +396,30 @@ fn lighting(scene: &Scene, options: &RenderOptions) -> Lighting {
     }
 }
 
-fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
-    if options.rasterizer == Rasterizer::Tiled && options.polygons == Polygons::Whole {
-        return Err(RenderError::WholePolygonsNeedScanline);
+pub(crate) fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
+    if options.rasterizer == Rasterizer::Tiled {
+        if options.polygons == Polygons::Whole {
+            return Err(RenderError::WholePolygonsNeedScanline);
+        }
+        if options.fixed_point_bits.is_some() {
+            return Err(RenderError::ScanlineOnly("fixed-point interpolation"));
+        }
+        if options.palette.is_some() {
+            return Err(RenderError::ScanlineOnly("the indexed palette"));
+        }
+    }
+    if let Some(bits) = options.fixed_point_bits {
+        if !(MIN_FRACTION_BITS..=MAX_FRACTION_BITS).contains(&bits) {
+            return Err(RenderError::FractionBits(bits));
+        }
+    }
+    if let Some(p) = options.palette {
+        if !p.is_valid() {
+            return Err(RenderError::Palette {
+                shades: p.shades,
+                offset: p.offset,
+            });
+        }
     }
     let (w, h) = (options.width, options.height);
     if w == 0
@@ -403,11 +467,37 @@ fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
 }
 
 /// Where fragments go: a depth test, then (if it passes) a colour.
-trait Target {
+///
+/// The other methods are hooks for a probe; their defaults do nothing and
+/// cost nothing.
+pub(crate) trait Target {
     /// Depth-tests pixel (`x`, `y`); true when it should be shaded and written.
     fn test(&mut self, x: u32, y: u32, depth: f32) -> bool;
     /// Writes the shaded colour of a pixel that passed [`Target::test`].
     fn write(&mut self, x: u32, y: u32, color: Rgb8);
+    /// Polygon `face` is about to be rasterized (`back`: seen from behind).
+    #[inline(always)]
+    fn polygon(&mut self, _face: usize, _back: bool) {}
+    /// Whether the rasterizer should trace its spans on row `y`.
+    #[inline(always)]
+    fn wants_trace(&self, _y: u32) -> bool {
+        false
+    }
+    /// A traced span, before its fragments.
+    #[inline(always)]
+    fn trace<const N: usize>(&mut self, _span: &SpanTrace<'_, N>) {}
+    /// Pixel (`x`, `y`) passed the test with interpolated attributes
+    /// `attrs`, the method lit it `lit` (unclamped) and it became `color`.
+    #[inline(always)]
+    fn shaded<const N: usize>(
+        &mut self,
+        _x: u32,
+        _y: u32,
+        _attrs: &[f32; N],
+        _lit: Rgb,
+        _color: Rgb8,
+    ) {
+    }
 }
 
 struct Frame {
@@ -454,8 +544,9 @@ trait Method<const N: usize> {
     fn corner(&mut self, corner: usize, vertex: u32, back: bool) -> [f32; N];
     /// Called before polygon `face` is rasterized.
     fn begin_polygon(&mut self, face: usize, corners: std::ops::Range<usize>, back: bool);
-    /// The colour of a fragment with interpolated attributes `attrs`.
-    fn shade(&mut self, attrs: &[f32; N]) -> Rgb8;
+    /// The light of a fragment with interpolated attributes `attrs`, before
+    /// clamping and rounding.
+    fn shade(&mut self, attrs: &[f32; N]) -> Rgb;
     /// Lighting evaluations so far.
     fn evaluations(&self) -> u64;
 }
@@ -475,7 +566,7 @@ impl SceneRefs<'_> {
 
 struct FlatMethod<'a> {
     scene: &'a SceneRefs<'a>,
-    color: Rgb8,
+    color: Rgb,
     evaluations: u64,
 }
 
@@ -494,10 +585,10 @@ impl Method<0> for FlatMethod<'_> {
         let normal = self.scene.faces[face].unwrap_or(Vec3::Z);
         let normal = if back { -normal } else { normal };
         self.evaluations += 1;
-        self.color = Rgb8::from_rgb(self.scene.lighting.eval(centroid, normal, Terms::Full));
+        self.color = self.scene.lighting.eval(centroid, normal, Terms::Full);
     }
 
-    fn shade(&mut self, _: &[f32; 0]) -> Rgb8 {
+    fn shade(&mut self, _: &[f32; 0]) -> Rgb {
         self.color
     }
 
@@ -531,8 +622,8 @@ impl Method<3> for GouraudMethod<'_> {
 
     fn begin_polygon(&mut self, _: usize, _: std::ops::Range<usize>, _: bool) {}
 
-    fn shade(&mut self, attrs: &[f32; 3]) -> Rgb8 {
-        Rgb8::from_rgb(Rgb::from_array(*attrs))
+    fn shade(&mut self, attrs: &[f32; 3]) -> Rgb {
+        Rgb::from_array(*attrs)
     }
 
     fn evaluations(&self) -> u64 {
@@ -557,11 +648,11 @@ impl Method<6> for PhongMethod<'_> {
         self.flip = if back { -1.0 } else { 1.0 };
     }
 
-    fn shade(&mut self, a: &[f32; 6]) -> Rgb8 {
+    fn shade(&mut self, a: &[f32; 6]) -> Rgb {
         let n = (Vec3::new(a[0], a[1], a[2]) * self.flip).normalize_or_zero();
         let p = Vec3::new(a[3], a[4], a[5]);
         self.evaluations += 1;
-        Rgb8::from_rgb(self.scene.lighting.eval(p, n, Terms::Full))
+        self.scene.lighting.eval(p, n, Terms::Full)
     }
 
     fn evaluations(&self) -> u64 {
@@ -574,15 +665,32 @@ struct ShadingSink<'a, const N: usize, M, T> {
     method: &'a mut M,
     target: &'a mut T,
     shaded: u64,
+    /// The palette and the material colour its shades are of.
+    palette: Option<(Palette, Rgb)>,
 }
 
 impl<const N: usize, M: Method<N>, T: Target> FragmentSink<N> for ShadingSink<'_, N, M, T> {
     fn fragment(&mut self, x: u32, y: u32, depth: f32, attrs: &[f32; N]) {
         if self.target.test(x, y, depth) {
             self.shaded += 1;
-            let color = self.method.shade(attrs);
+            let lit = self.method.shade(attrs);
+            let color = match self.palette {
+                None => Rgb8::from_rgb(lit),
+                Some((palette, base)) => palette.shade(lit, base).color,
+            };
+            self.target.shaded(x, y, attrs, lit, color);
             self.target.write(x, y, color);
         }
+    }
+
+    #[inline(always)]
+    fn wants_trace(&self, y: u32) -> bool {
+        self.target.wants_trace(y)
+    }
+
+    #[inline(always)]
+    fn trace(&mut self, span: &SpanTrace<'_, N>) {
+        self.target.trace(span);
     }
 }
 
@@ -615,7 +723,8 @@ pub(crate) fn to_window<const N: usize>(
     }
 }
 
-fn draw(
+/// Draws a frame with the scanline rasterizer into `target`.
+pub(crate) fn draw(
     scene: &Scene,
     options: &RenderOptions,
     lighting: &Lighting,
@@ -633,7 +742,7 @@ fn draw(
         Shading::Flat => {
             let mut m = FlatMethod {
                 scene: &refs,
-                color: Rgb8::default(),
+                color: Rgb::BLACK,
                 evaluations: 0,
             };
             draw_with(&refs, options, view_projection, &mut m, target)
@@ -684,6 +793,10 @@ fn draw_with<const N: usize, M: Method<N>, T: Target>(
     let (mut input, mut clipped, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
     let mut window: Vec<ScreenVertex<N>> = Vec::new();
     let mut shaded = 0;
+    let walk = ScanlineOptions {
+        interpolation: options.interpolation,
+        fraction_bits: options.fixed_point_bits,
+    };
 
     let mut project =
         |method: &mut M, face: usize, back: bool, window: &mut Vec<ScreenVertex<N>>| {
@@ -722,18 +835,16 @@ fn draw_with<const N: usize, M: Method<N>, T: Target>(
         }
         stats.rasterized += 1;
         method.begin_polygon(face, mesh.corner_range(face), back);
+        target.polygon(face, back);
         let mut sink = ShadingSink {
             method: &mut *method,
             target: &mut *target,
             shaded: 0,
+            palette: options.palette.map(|p| (p, scene.lighting.material.kd)),
         };
         match options.polygons {
-            Polygons::Fans => {
-                rasterize_fan(&window, width, height, options.interpolation, &mut sink)
-            }
-            Polygons::Whole => {
-                rasterize_polygon(&window, width, height, options.interpolation, &mut sink)
-            }
+            Polygons::Fans => rasterize_fan_with(&window, width, height, &walk, &mut sink),
+            Polygons::Whole => rasterize_polygon_with(&window, width, height, &walk, &mut sink),
         }
         shaded += sink.shaded;
     }

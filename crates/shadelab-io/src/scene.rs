@@ -9,10 +9,11 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use serde::Deserialize;
+use shadelab_core::raster::scanline::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
 use shadelab_core::{
     builtin_model, builtin_model_info, vertex_normals, Camera, Interpolation, Light, LightKind,
-    Material, Mesh, NormalWeighting, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8, Scene,
-    Shading, Specular, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
+    Material, Mesh, NormalWeighting, Palette, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8,
+    Scene, Shading, Specular, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
 };
 
 use crate::{load_mesh, LoadError};
@@ -180,6 +181,12 @@ pub struct RenderSection {
     pub polygons: Option<PolygonsName>,
     /// phong | blinn-phong: the specular term's `r·v` or `n·h`; default phong.
     pub specular: Option<SpecularName>,
+    /// Fraction bits of fixed-point attribute stepping (scanline only); absent: floating point.
+    pub fixed_point_bits: Option<u32>,
+    /// Shades of the material colour in an indexed palette (scanline only); absent: true colour.
+    pub palette_shades: Option<u32>,
+    /// The palette entry of the darkest shade; default 0.
+    pub palette_offset: Option<u32>,
     /// Degrees to orbit the camera about its up axis; default 0.
     pub yaw: Option<f32>,
     /// Degrees to orbit the camera towards its up axis; default 0.
@@ -382,7 +389,58 @@ impl SceneFile {
                 (None, _) => Rasterizer::Tiled,
             },
             specular: r.specular.map(Specular::from).unwrap_or_default(),
+            fixed_point_bits: r.fixed_point_bits,
+            palette: match (r.palette_shades, r.palette_offset) {
+                (None, Some(_)) => {
+                    return Err(value_error(
+                        "render.palette_offset",
+                        "needs render.palette_shades",
+                    ));
+                }
+                (None, None) => None,
+                (Some(shades), offset) => Some(Palette {
+                    shades,
+                    offset: offset.unwrap_or(0),
+                }),
+            },
         };
+        let mut options = options;
+        if let Some(bits) = options.fixed_point_bits {
+            if !(MIN_FRACTION_BITS..=MAX_FRACTION_BITS).contains(&bits) {
+                return Err(value_error(
+                    "render.fixed_point_bits",
+                    format!("must be {MIN_FRACTION_BITS}..={MAX_FRACTION_BITS}, got {bits}"),
+                ));
+            }
+        }
+        if let Some(p) = options.palette {
+            if !p.is_valid() {
+                return Err(value_error(
+                    "render.palette_shades",
+                    format!(
+                        "needs 2..=256 shades with palette_offset + palette_shades ≤ 256, got {} at offset {}",
+                        p.shades, p.offset
+                    ),
+                ));
+            }
+        }
+        // Modes only the scanline rasterizer draws choose it unless the file insists.
+        if options.needs_scanline() {
+            match r.rasterizer {
+                Some(RasterizerName::Tiled) => {
+                    let key = if r.fixed_point_bits.is_some() {
+                        "render.fixed_point_bits"
+                    } else {
+                        "render.palette_shades"
+                    };
+                    return Err(value_error(
+                        key,
+                        "needs rasterizer = \"scanline\"; the tiled rasterizer does not draw it",
+                    ));
+                }
+                _ => options.rasterizer = Rasterizer::Scanline,
+            }
+        }
 
         let (mesh, default_crease) = self.load_model(base_dir)?;
         let crease = match self.model.crease_angle {

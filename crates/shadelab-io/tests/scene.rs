@@ -183,6 +183,8 @@ fn full_example_resolves() {
             rasterizer: Rasterizer::Tiled,
             polygons: Polygons::Fans,
             specular: Specular::Phong,
+            fixed_point_bits: None,
+            palette: None,
         }
     );
     assert_eq!(scene.camera.eye, Vec3::new(0.0, 0.5, 3.0));

@@ -91,6 +91,19 @@ pub trait FragmentSink<const N: usize> {
     /// Pixel (`x`, `y`) is covered, at window depth `depth`, with the
     /// interpolated attributes `attrs`.
     fn fragment(&mut self, x: u32, y: u32, depth: f32, attrs: &[f32; N]);
+
+    /// Whether the scanline rasterizer should describe its spans on row `y`
+    /// ([`FragmentSink::trace`]). The default, a constant `false`, lets the
+    /// compiler drop the tracing from ordinary renders.
+    #[inline(always)]
+    fn wants_trace(&self, _y: u32) -> bool {
+        false
+    }
+
+    /// The scanline walk's state for a span about to be filled, on a row
+    /// for which [`FragmentSink::wants_trace`] said yes.
+    #[inline(always)]
+    fn trace(&mut self, _span: &scanline::SpanTrace<'_, N>) {}
 }
 
 /// Twice the signed area of a snapped polygon in window units, positive when

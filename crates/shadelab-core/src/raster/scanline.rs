@@ -21,6 +21,18 @@
 //!   triangles). A polygon that snapping made non-convex is drawn as a fan
 //!   from a vertex that sees all the others.
 //!
+//! * **Fixed point on request.** With [`ScanlineOptions::fraction_bits`] the
+//!   attributes (attribute/w in perspective mode) are held as multiples of
+//!   2^−F: every start value and every step is rounded down to that grid (an
+//!   arithmetic shift, as integer hardware does), and the sums stay on it
+//!   exactly, so the error of a span grows with its length as it did on
+//!   old machines. Depth, 1/w and coverage stay exact.
+//! * **A trace for whoever asks.** A sink whose
+//!   [`FragmentSink::wants_trace`] says yes for a row is told the walk's state
+//!   there ([`SpanTrace`]: the edges crossed, P and Q, the values stepped
+//!   along the edges and the span) before the row's fragments. The default
+//!   answer is a constant `false`, so an ordinary render pays nothing.
+//!
 //! The caller passes polygons wound counter-clockwise as the viewer sees them
 //! (see [`super::signed_area_ccw`]); others draw nothing. With that winding,
 //! edges going down the screen bound spans on the left and edges going up
@@ -31,16 +43,68 @@ use super::{
     SUBPIXEL_ONE,
 };
 
-/// Depth, 1/w and attributes, the quantities stepped across a polygon.
+/// How the scanline rasterizer steps its quantities.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ScanlineOptions {
+    /// Perspective-correct or screen-linear attributes.
+    pub interpolation: Interpolation,
+    /// Hold the stepped attributes in fixed point with this many fraction
+    /// bits ([`MIN_FRACTION_BITS`]`..=`[`MAX_FRACTION_BITS`]); `None`: in `f64`.
+    pub fraction_bits: Option<u32>,
+}
+
+/// The fewest fraction bits fixed-point stepping accepts.
+pub const MIN_FRACTION_BITS: u32 = 1;
+/// The most fraction bits fixed-point stepping accepts (sums stay exact in `f64`).
+pub const MAX_FRACTION_BITS: u32 = 30;
+
+impl ScanlineOptions {
+    /// Floating-point stepping with `interpolation`.
+    pub fn new(interpolation: Interpolation) -> ScanlineOptions {
+        ScanlineOptions {
+            interpolation,
+            fraction_bits: None,
+        }
+    }
+}
+
+/// Rounds attributes down to multiples of 2^−bits (depth and 1/w untouched).
 #[derive(Clone, Copy)]
-struct Varyings<const N: usize> {
-    depth: f64,
-    inv_w: f64,
-    attrs: [f64; N],
+struct Grid {
+    scale: f64,
+}
+
+impl Grid {
+    fn new(bits: Option<u32>) -> Option<Grid> {
+        bits.map(|b| Grid {
+            scale: f64::from(1u32 << b.clamp(MIN_FRACTION_BITS, MAX_FRACTION_BITS)),
+        })
+    }
+
+    fn snap<const N: usize>(grid: Option<Grid>, v: &mut Varyings<N>) {
+        if let Some(g) = grid {
+            for a in &mut v.attrs {
+                *a = (*a * g.scale).floor() / g.scale;
+            }
+        }
+    }
+}
+
+/// Depth, 1/w and attributes: the quantities stepped across a polygon. In
+/// perspective mode `attrs` holds attribute/w; in screen mode the attributes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Varyings<const N: usize> {
+    /// Window depth.
+    pub depth: f64,
+    /// 1/w.
+    pub inv_w: f64,
+    /// The attributes as stepped (attribute/w in perspective mode).
+    pub attrs: [f64; N],
 }
 
 impl<const N: usize> Varyings<N> {
-    fn at_vertex(v: &ScreenVertex<N>, interpolation: Interpolation) -> Self {
+    /// The values at a vertex, as the walk starts from them.
+    pub fn at_vertex(v: &ScreenVertex<N>, interpolation: Interpolation) -> Self {
         let scale = match interpolation {
             Interpolation::Perspective => v.inv_w as f64,
             Interpolation::Screen => 1.0,
@@ -66,6 +130,14 @@ impl<const N: usize> Varyings<N> {
             step.attrs[k] = d * rate;
         }
         (value, step)
+    }
+
+    /// The attributes themselves: divided by 1/w in perspective mode.
+    pub fn attributes(&self, interpolation: Interpolation) -> [f64; N] {
+        match interpolation {
+            Interpolation::Perspective => self.attrs.map(|a| a / self.inv_w),
+            Interpolation::Screen => self.attrs,
+        }
     }
 
     fn add(&mut self, step: &Self) {
@@ -124,6 +196,8 @@ impl EdgeBound {
 struct Edge<'a, const N: usize> {
     top: &'a ScreenVertex<N>,
     bottom: &'a ScreenVertex<N>,
+    /// Indices of `top` and `bottom` in the polygon.
+    ends: (usize, usize),
     /// Rows whose centre line the edge crosses, clipped to the image.
     rows: std::ops::Range<i64>,
 }
@@ -131,13 +205,21 @@ struct Edge<'a, const N: usize> {
 /// An edge being walked, row by row.
 struct EdgeWalk<const N: usize> {
     end_row: i64,
+    ends: (usize, usize),
+    /// The edge's ends in snapped window y, for the trace's edge parameter.
+    y_range: (i64, i64),
     bound: EdgeBound,
     varyings: Varyings<N>,
     step: Varyings<N>,
 }
 
 impl<const N: usize> EdgeWalk<N> {
-    fn start(edge: &Edge<'_, N>, row: i64, interpolation: Interpolation) -> EdgeWalk<N> {
+    fn start(
+        edge: &Edge<'_, N>,
+        row: i64,
+        interpolation: Interpolation,
+        grid: Option<Grid>,
+    ) -> EdgeWalk<N> {
         let (a, b) = (edge.top, edge.bottom);
         let dy = b.y - a.y;
         let dx = b.x - a.x;
@@ -149,13 +231,17 @@ impl<const N: usize> EdgeWalk<N> {
         );
         let t = (centre_y - a.y) as f64 / dy as f64;
         let rate = SUBPIXEL_ONE as f64 / dy as f64;
-        let (varyings, step) = Varyings::at_vertex(a, interpolation).lerp_and_rate(
+        let (mut varyings, mut step) = Varyings::at_vertex(a, interpolation).lerp_and_rate(
             &Varyings::at_vertex(b, interpolation),
             t,
             rate,
         );
+        Grid::snap(grid, &mut varyings);
+        Grid::snap(grid, &mut step);
         EdgeWalk {
             end_row: edge.rows.end,
+            ends: edge.ends,
+            y_range: (a.y, b.y),
             bound,
             varyings,
             step,
@@ -166,6 +252,55 @@ impl<const N: usize> EdgeWalk<N> {
         self.bound.step();
         self.varyings.add(&self.step);
     }
+
+    fn trace(&self, row: i64) -> EdgeTrace<N> {
+        let centre_y = row * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let (top, bottom) = self.y_range;
+        EdgeTrace {
+            top: self.ends.0,
+            bottom: self.ends.1,
+            x: self.bound.crossing(),
+            t: (centre_y - top) as f64 / (bottom - top) as f64,
+            value: self.varyings,
+        }
+    }
+}
+
+/// Where a scanline crosses one edge of the polygon, as the walk found it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeTrace<const N: usize> {
+    /// Index in [`SpanTrace::polygon`] of the edge's upper end.
+    pub top: usize,
+    /// Index of its lower end.
+    pub bottom: usize,
+    /// The crossing's x in pixels (P on a left edge, Q on a right one).
+    pub x: f64,
+    /// The edge parameter there: 0 at `top`, 1 at `bottom`, linear in y.
+    pub t: f64,
+    /// The values stepped down the edge to this row.
+    pub value: Varyings<N>,
+}
+
+/// The scanline walk's state for one span, handed to sinks that ask
+/// ([`FragmentSink::wants_trace`]) before the span's fragments.
+#[derive(Debug, Clone)]
+pub struct SpanTrace<'a, const N: usize> {
+    /// The convex polygon walked: the whole polygon, or a triangle of its fan.
+    pub polygon: &'a [ScreenVertex<N>],
+    /// The row; its centre line is at y = row + ½.
+    pub row: u32,
+    /// The left edge crossed, at P.
+    pub left: EdgeTrace<N>,
+    /// The right edge crossed, at Q.
+    pub right: EdgeTrace<N>,
+    /// First pixel filled, and one past the last.
+    pub pixels: std::ops::Range<u32>,
+    /// The values at the first pixel's centre.
+    pub start: Varyings<N>,
+    /// Their step from one pixel to the next.
+    pub step: Varyings<N>,
+    /// How the values were stepped.
+    pub options: ScanlineOptions,
 }
 
 /// The rows whose pixel centres lie in `[top, bottom)` (snapped units).
@@ -190,6 +325,14 @@ impl<const N: usize, S: FragmentSink<N>> FragmentSink<N> for OncePerPixel<'_, S>
             self.sink.fragment(x, y, depth, attrs);
         }
     }
+
+    fn wants_trace(&self, y: u32) -> bool {
+        self.sink.wants_trace(y)
+    }
+
+    fn trace(&mut self, span: &SpanTrace<'_, N>) {
+        self.sink.trace(span);
+    }
 }
 
 /// Fills a convex polygon, wound counter-clockwise as the viewer sees it,
@@ -203,14 +346,26 @@ pub fn rasterize_polygon<const N: usize>(
     interpolation: Interpolation,
     sink: &mut impl FragmentSink<N>,
 ) {
+    let options = ScanlineOptions::new(interpolation);
+    rasterize_polygon_with(polygon, width, height, &options, sink);
+}
+
+/// [`rasterize_polygon`] with every stepping option.
+pub fn rasterize_polygon_with<const N: usize>(
+    polygon: &[ScreenVertex<N>],
+    width: u32,
+    height: u32,
+    options: &ScanlineOptions,
+    sink: &mut impl FragmentSink<N>,
+) {
     if polygon.len() < 3 || signed_area_ccw(polygon) <= 0 {
         return;
     }
     if !is_convex(polygon) {
-        rasterize_fan(polygon, width, height, interpolation, sink);
+        rasterize_fan_with(polygon, width, height, options, sink);
         return;
     }
-    rasterize_convex(polygon, width, height, interpolation, sink);
+    rasterize_convex(polygon, width, height, options, sink);
 }
 
 /// Rasterizes a polygon as the triangles of its [`fan`], the way the tiled
@@ -220,6 +375,18 @@ pub fn rasterize_fan<const N: usize>(
     width: u32,
     height: u32,
     interpolation: Interpolation,
+    sink: &mut impl FragmentSink<N>,
+) {
+    let options = ScanlineOptions::new(interpolation);
+    rasterize_fan_with(polygon, width, height, &options, sink);
+}
+
+/// [`rasterize_fan`] with every stepping option.
+pub fn rasterize_fan_with<const N: usize>(
+    polygon: &[ScreenVertex<N>],
+    width: u32,
+    height: u32,
+    options: &ScanlineOptions,
     sink: &mut impl FragmentSink<N>,
 ) {
     if polygon.len() < 3 || signed_area_ccw(polygon) <= 0 {
@@ -233,11 +400,11 @@ pub fn rasterize_fan<const N: usize>(
             sink,
         };
         for triangle in fan.triangles(polygon) {
-            rasterize_triangle(&triangle, width, height, interpolation, &mut once);
+            rasterize_triangle(&triangle, width, height, options, &mut once);
         }
     } else {
         for triangle in fan.triangles(polygon) {
-            rasterize_triangle(&triangle, width, height, interpolation, sink);
+            rasterize_triangle(&triangle, width, height, options, sink);
         }
     }
 }
@@ -247,11 +414,11 @@ fn rasterize_triangle<const N: usize>(
     triangle: &[ScreenVertex<N>; 3],
     width: u32,
     height: u32,
-    interpolation: Interpolation,
+    options: &ScanlineOptions,
     sink: &mut impl FragmentSink<N>,
 ) {
     if signed_area_ccw(triangle) > 0 {
-        rasterize_convex(triangle, width, height, interpolation, sink);
+        rasterize_convex(triangle, width, height, options, sink);
     }
 }
 
@@ -260,9 +427,11 @@ fn rasterize_convex<const N: usize>(
     polygon: &[ScreenVertex<N>],
     width: u32,
     height: u32,
-    interpolation: Interpolation,
+    options: &ScanlineOptions,
     sink: &mut impl FragmentSink<N>,
 ) {
+    let interpolation = options.interpolation;
+    let grid = Grid::new(options.fraction_bits);
     let image_rows = 0..i64::from(height);
     let clip_rows =
         |r: std::ops::Range<i64>| r.start.max(image_rows.start)..r.end.min(image_rows.end);
@@ -270,16 +439,21 @@ fn rasterize_convex<const N: usize>(
     let mut left: Vec<Edge<'_, N>> = Vec::with_capacity(n);
     let mut right: Vec<Edge<'_, N>> = Vec::with_capacity(n);
     for i in 0..n {
-        let a = &polygon[i];
-        let b = &polygon[(i + 1) % n];
-        let (edge_list, top, bottom) = match a.y.cmp(&b.y) {
-            std::cmp::Ordering::Less => (&mut left, a, b),
-            std::cmp::Ordering::Greater => (&mut right, b, a),
+        let j = (i + 1) % n;
+        let (a, b) = (&polygon[i], &polygon[j]);
+        let (edge_list, top, bottom, ends) = match a.y.cmp(&b.y) {
+            std::cmp::Ordering::Less => (&mut left, a, b, (i, j)),
+            std::cmp::Ordering::Greater => (&mut right, b, a, (j, i)),
             std::cmp::Ordering::Equal => continue,
         };
         let rows = clip_rows(rows_between(top.y, bottom.y));
         if !rows.is_empty() {
-            edge_list.push(Edge { top, bottom, rows });
+            edge_list.push(Edge {
+                top,
+                bottom,
+                ends,
+                rows,
+            });
         }
     }
     left.sort_by_key(|e| e.rows.start);
@@ -301,7 +475,7 @@ fn rasterize_convex<const N: usize>(
                 .by_ref()
                 .find(|e| e.rows.end > row)
                 .filter(|e| e.rows.start <= row)
-                .map(|e| EdgeWalk::start(e, row, interpolation));
+                .map(|e| EdgeWalk::start(e, row, interpolation, grid));
         }
     };
     let mut attrs = [0f32; N];
@@ -316,11 +490,25 @@ fn rasterize_convex<const N: usize>(
         let end = r.bound.first_pixel().min(i64::from(width));
         if first < end {
             let (p, q) = (l.bound.crossing(), r.bound.crossing());
-            let (mut v, step) = l.varyings.lerp_and_rate(
+            let (mut v, mut step) = l.varyings.lerp_and_rate(
                 &r.varyings,
                 (first as f64 + 0.5 - p) / (q - p),
                 1.0 / (q - p),
             );
+            Grid::snap(grid, &mut v);
+            Grid::snap(grid, &mut step);
+            if sink.wants_trace(row as u32) {
+                sink.trace(&SpanTrace {
+                    polygon,
+                    row: row as u32,
+                    left: l.trace(row),
+                    right: r.trace(row),
+                    pixels: first as u32..end as u32,
+                    start: v,
+                    step,
+                    options: *options,
+                });
+            }
             for x in first..end {
                 for (out, value) in attrs.iter_mut().zip(v.attrs) {
                     *out = match interpolation {

@@ -334,6 +334,8 @@ pub fn options(width: u32, height: u32, shading: Shading) -> RenderOptions {
         rasterizer: rasterizer_under_test(),
         polygons: Polygons::Fans,
         specular: Specular::Phong,
+        fixed_point_bits: None,
+        palette: None,
     }
 }
 
