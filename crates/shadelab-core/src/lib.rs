@@ -42,7 +42,7 @@ pub use probe::{
 };
 pub use raster::Interpolation;
 pub use render::{
-    coverage, render, Polygons, Rasterizer, RenderError, RenderOptions, RenderStats, Renderer,
-    Scene, Shading, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
+    coverage, render, to_window, Polygons, Rasterizer, RenderError, RenderOptions, RenderStats,
+    Renderer, Scene, Shading, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
 };
 pub use simd::SimdLevel;

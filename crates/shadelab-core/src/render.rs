@@ -700,12 +700,9 @@ pub(crate) fn guard_band(width: u32, height: u32) -> f32 {
     ((1u32 << 20) as f32 / width.max(height) as f32 - 1.0).max(1.0)
 }
 
-/// The perspective divide and viewport transform, then snapping.
-pub(crate) fn to_window<const N: usize>(
-    v: &ClipVertex<N>,
-    width: u32,
-    height: u32,
-) -> ScreenVertex<N> {
+/// The perspective divide and viewport transform, then snapping: where a
+/// clip-space vertex lands in the window, as both rasterizers place it.
+pub fn to_window<const N: usize>(v: &ClipVertex<N>, width: u32, height: u32) -> ScreenVertex<N> {
     let inv_w = 1.0 / f64::from(v.clip.w);
     let x = (f64::from(v.clip.x) * inv_w + 1.0) * 0.5 * f64::from(width);
     let y = (1.0 - f64::from(v.clip.y) * inv_w) * 0.5 * f64::from(height);

@@ -1,0 +1,62 @@
+//! shadelab's teaching instruments: the pictures and numbers that show
+//! *why* flat, Gouraud and Phong shading differ. No I/O; the same functions
+//! serve the command line and, through WebAssembly, the viewer.
+//!
+//! | instrument | module | entry point |
+//! |---|---|---|
+//! | pixel inspector | `inspect` | [`inspect`], [`inspection_text`] |
+//! | scanline profile (Mach bands) | `profile` | [`profile()`] |
+//! | exact surfaces | `exact` | [`Surface`], [`ExactImage`] |
+//! | error maps, accuracy | `errors` | [`error_maps`], [`accuracy`] |
+//! | overlays | `overlay` | [`draw_overlays`] |
+//! | interpolation on polygons | `quad` | [`quad_study`] |
+//! | cost | `cost` | [`measure_cost`] |
+//! | texts in four languages | `texts` | [`Texts`], [`Lang`] |
+//!
+//! The inspector and the profiles read the renderer's own numbers through
+//! [`shadelab_core::probe`]; the modes of old hardware they explain
+//! (fixed-point stepping, the indexed palette) are render options of the
+//! scanline rasterizer.
+#![warn(missing_docs)]
+
+mod cost;
+mod errors;
+mod exact;
+mod inspect;
+mod overlay;
+mod profile;
+mod quad;
+mod texts;
+
+pub use cost::{measure_cost, Cost};
+pub use errors::{
+    accuracy, drawn_mask, error_maps, exact_image, heat_bar, heat_color, image_diff, AccuracyRow,
+    ErrorMap, ImageDiff, MethodErrors, SILHOUETTE,
+};
+pub use exact::{
+    exact_pixel, normalization, ExactImage, Rays, Shape, Surface, SurfaceHit, EXACT_MODELS,
+};
+pub use inspect::{
+    inspect, inspection_text, lerp_attributes, CornerView, EdgeView, Inspection, MethodView,
+    SpanView, WalkedVertex,
+};
+pub use overlay::{
+    draw_overlays, Canvas, Overlays, Projector, WindowPoint, FACE_NORMAL, LIGHT, NORMAL_LENGTH,
+    VERTEX_NORMAL, WIREFRAME,
+};
+pub use profile::{intensity, profile, Curve, CurveKind, Profile, ProfileLine};
+pub use quad::{quad_scene, quad_study, QuadSample};
+pub use texts::{placeholders, Lang, Texts};
+
+use shadelab_core::{Lighting, RenderOptions, Scene};
+
+/// The reflection model of a frame, as the renderer sets it up.
+pub fn lighting_of(scene: &Scene, options: &RenderOptions) -> Lighting {
+    Lighting {
+        ambient: scene.ambient,
+        lights: scene.lights.clone(),
+        material: scene.material,
+        eye: scene.camera.eye,
+        specular: options.specular,
+    }
+}
