@@ -26,6 +26,186 @@ pub enum Command {
     Compare(CompareArgs),
     /// List the built-in models.
     Models,
+    /// Explain one pixel: for each method, the polygon, the scanline, P, Q,
+    /// the interpolation parameters and values, and the colour.
+    Explain(ExplainArgs),
+    /// Plot the intensity along a row (or a line) for flat, Gouraud, Phong
+    /// and the exact surface, with its derivative: the Mach bands made visible.
+    Profile(ProfileArgs),
+    /// Error maps against the exact surface (sphere, torus, cylinder, cone):
+    /// the exact image and each method's per-pixel error as a heat map.
+    Errors(ErrorsArgs),
+    /// Each method's error against the exact surface as the tessellation grows: a table and a plot.
+    Accuracy(AccuracyArgs),
+    /// Gouraud shading of a quad drawn whole and as triangles, turned on the screen.
+    Quad(QuadArgs),
+    /// Render time and lighting evaluations (per polygon, vertex, pixel) of each method.
+    Cost(CostArgs),
+}
+
+/// `--lang`
+#[derive(Debug, Clone, Copy, ValueEnum, Default)]
+pub enum LangArg {
+    /// English.
+    #[default]
+    En,
+    /// Russian.
+    Ru,
+    /// Slovak.
+    Sk,
+    /// Czech.
+    Cs,
+}
+
+impl From<LangArg> for shadelab_lab::Lang {
+    fn from(l: LangArg) -> shadelab_lab::Lang {
+        match l {
+            LangArg::En => shadelab_lab::Lang::En,
+            LangArg::Ru => shadelab_lab::Lang::Ru,
+            LangArg::Sk => shadelab_lab::Lang::Sk,
+            LangArg::Cs => shadelab_lab::Lang::Cs,
+        }
+    }
+}
+
+/// `shadelab explain`
+#[derive(Debug, Args)]
+pub struct ExplainArgs {
+    /// Scene file (TOML); flags override its values.
+    pub scene: Option<PathBuf>,
+    /// The pixel, X,Y (column, row; row 0 at the top).
+    #[arg(long, value_parser = parse_pixel)]
+    pub pixel: (u32, u32),
+    /// Only this method (default: all three).
+    #[arg(long, value_enum)]
+    pub shading: Option<ShadingArg>,
+    /// Language of the explanation.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
+    /// Scene overrides.
+    #[command(flatten)]
+    pub overrides: SceneOverrides,
+}
+
+/// `shadelab profile`
+#[derive(Debug, Args)]
+pub struct ProfileArgs {
+    /// Scene file (TOML); flags override its values.
+    pub scene: Option<PathBuf>,
+    /// The row to profile (default: the middle row).
+    #[arg(long, conflicts_with = "line")]
+    pub row: Option<u32>,
+    /// A line instead of a row: X0,Y0,X1,Y1 in pixels.
+    #[arg(long, value_parser = parse_line, allow_hyphen_values = true)]
+    pub line: Option<[f64; 4]>,
+    /// Output PNG file (the plot).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Also print the values, one sample per line.
+    #[arg(long)]
+    pub table: bool,
+    /// Language of the plot's labels.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
+    /// Scene overrides (`--size` is the rendered frame's size).
+    #[command(flatten)]
+    pub overrides: SceneOverrides,
+}
+
+/// `shadelab errors`
+#[derive(Debug, Args)]
+pub struct ErrorsArgs {
+    /// Scene file (TOML); flags override its values.
+    pub scene: Option<PathBuf>,
+    /// Output PNG file: the exact image and the three heat maps.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// The error at the top of the colour scale, 0–255 (default: the largest error).
+    #[arg(long)]
+    pub scale: Option<f32>,
+    /// Language of the labels.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
+    /// Scene overrides (`--size` is the size of each panel).
+    #[command(flatten)]
+    pub overrides: SceneOverrides,
+}
+
+/// `shadelab accuracy`
+#[derive(Debug, Args)]
+pub struct AccuracyArgs {
+    /// Scene file (TOML); flags override its values. The model must be a
+    /// sphere, torus, cylinder or cone (default sphere).
+    pub scene: Option<PathBuf>,
+    /// Tessellation levels, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "6,12,24,48,96")]
+    pub details: Vec<u32>,
+    /// Output PNG file for the plot (the table is always printed).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Language of the plot's labels.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
+    /// Scene overrides (`--size` is the rendered frame's size).
+    #[command(flatten)]
+    pub overrides: SceneOverrides,
+}
+
+/// `shadelab quad`
+#[derive(Debug, Args)]
+pub struct QuadArgs {
+    /// Output PNG file.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Turns of the quad on the screen, degrees, comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0,15,30,45,60,75,90",
+        allow_hyphen_values = true
+    )]
+    pub angles: Vec<f32>,
+    /// Size of each panel in pixels (odd puts a pixel centre on the quad's centre).
+    #[arg(long, default_value_t = 121)]
+    pub size: u32,
+}
+
+/// `shadelab cost`
+#[derive(Debug, Args)]
+pub struct CostArgs {
+    /// Scene file (TOML); flags override its values.
+    pub scene: Option<PathBuf>,
+    /// Renders per method; the median time is reported.
+    #[arg(long, default_value_t = 5)]
+    pub runs: u32,
+    /// Scene overrides.
+    #[command(flatten)]
+    pub overrides: SceneOverrides,
+}
+
+/// `--overlay`, on `render` and `compare`.
+#[derive(Debug, Args, Default)]
+pub struct OverlayArgs {
+    /// Draw over the image: wireframe, face-normals, vertex-normals, light (comma-separated), or all.
+    #[arg(long, value_parser = parse_overlays)]
+    pub overlay: Option<shadelab_lab::Overlays>,
+}
+
+fn parse_overlays(s: &str) -> Result<shadelab_lab::Overlays, String> {
+    shadelab_lab::Overlays::parse(s)
+}
+
+fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
+    let [x, y]: [u32; 2] = parse_numbers(s, "pixel coordinates")?;
+    Ok((x, y))
+}
+
+fn parse_line(s: &str) -> Result<[f64; 4], String> {
+    let v: [f64; 4] = parse_numbers(s, "numbers")?;
+    if v.iter().any(|c| !c.is_finite()) {
+        return Err(format!("coordinates must be finite, got {s:?}"));
+    }
+    Ok(v)
 }
 
 /// `shadelab render`
@@ -42,6 +222,9 @@ pub struct RenderArgs {
     /// Scene overrides.
     #[command(flatten)]
     pub overrides: SceneOverrides,
+    /// Overlays.
+    #[command(flatten)]
+    pub overlay: OverlayArgs,
 }
 
 /// `shadelab compare`
@@ -55,10 +238,13 @@ pub struct CompareArgs {
     /// Scene overrides (`--size` is the size of each panel).
     #[command(flatten)]
     pub overrides: SceneOverrides,
+    /// Overlays, on every panel.
+    #[command(flatten)]
+    pub overlay: OverlayArgs,
 }
 
 /// Flags that override the scene file, key by key.
-#[derive(Debug, Args, Default)]
+#[derive(Debug, Clone, Args, Default)]
 pub struct SceneOverrides {
     /// Built-in model name or mesh file (.obj, .stl, .ply, .gltf, .glb); `shadelab models` lists the built-ins.
     #[arg(long)]
@@ -129,6 +315,15 @@ pub struct SceneOverrides {
     /// The specular term: Phong's r·v or Blinn's n·h.
     #[arg(long, value_enum)]
     pub specular: Option<SpecularArg>,
+    /// Step attributes in fixed point with this many fraction bits (scanline rasterizer).
+    #[arg(long, value_name = "BITS")]
+    pub fixed_point: Option<u32>,
+    /// Draw with an indexed palette of this many shades of the material colour (scanline rasterizer).
+    #[arg(long, value_name = "SHADES")]
+    pub palette: Option<u32>,
+    /// The palette entry of the darkest shade.
+    #[arg(long, value_name = "ENTRY", requires = "palette")]
+    pub palette_offset: Option<u32>,
 }
 
 /// `--rasterizer`
@@ -359,6 +554,13 @@ impl SceneOverrides {
                 SpecularArg::Phong => SpecularName::Phong,
                 SpecularArg::BlinnPhong => SpecularName::BlinnPhong,
             });
+        }
+        if self.fixed_point.is_some() {
+            scene.render.fixed_point_bits = self.fixed_point;
+        }
+        if self.palette.is_some() {
+            scene.render.palette_shades = self.palette;
+            scene.render.palette_offset = self.palette_offset;
         }
     }
 }

@@ -4,8 +4,16 @@
 //! Exit codes: 0 on success; 2 for invalid input (arguments, scene file,
 //! model file, out-of-range values); 1 when the output cannot be written.
 
+mod accuracy;
 mod cli;
+mod cost;
+mod errors;
+mod explain;
+mod lab;
 mod label;
+mod plot;
+mod profile;
+mod quad;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -18,6 +26,7 @@ use shadelab_core::{
     render, Image, RenderOptions, RenderStats, Rgb8, Scene, Shading, BUILTIN_MODELS,
 };
 use shadelab_io::{model_path, write_png, SceneFile};
+use shadelab_lab::{draw_overlays, Overlays};
 
 use cli::{Cli, Command, SceneOverrides};
 
@@ -99,14 +108,28 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             let (scene, options, inputs) = resolve(&file, args.scene.as_deref())?;
             check_output(&args.output, &inputs)?;
-            let (image, stats, ms) = timed_render(&scene, &options)?;
+            let (mut image, stats, ms) = timed_render(&scene, &options)?;
+            if let Some(overlays) = args.overlay.overlay {
+                draw_overlays(&mut image, &scene, &options, overlays).map_err(input_error)?;
+            }
             write_png(&args.output, &image)
                 .with_context(|| format!("cannot write {}", args.output.display()))
                 .map_err(output_error)?;
             report(options.shading, &options, &stats, ms);
             Ok(())
         }
-        Command::Compare(args) => compare(args.scene.as_deref(), &args.overrides, &args.output),
+        Command::Compare(args) => compare(
+            args.scene.as_deref(),
+            &args.overrides,
+            &args.output,
+            args.overlay.overlay,
+        ),
+        Command::Explain(args) => explain::run(&args),
+        Command::Profile(args) => profile::run(&args),
+        Command::Errors(args) => errors::run(&args),
+        Command::Accuracy(args) => accuracy::run(&args),
+        Command::Quad(args) => quad::run(&args),
+        Command::Cost(args) => cost::run(&args),
         Command::Models => {
             let mut out = std::io::stdout().lock();
             let mut list = || -> std::io::Result<()> {
@@ -206,6 +229,7 @@ fn compare(
     scene_path: Option<&Path>,
     overrides: &SceneOverrides,
     output: &Path,
+    overlays: Option<Overlays>,
 ) -> Result<(), Failure> {
     let mut file = read_scene(scene_path)?;
     // Panels default to a square that three fit side by side on a laptop screen.
@@ -223,7 +247,10 @@ fn compare(
     let mut sheet = Image::filled(total_width, h + LABEL_BAND, band);
     for (k, shading) in Shading::ALL.into_iter().enumerate() {
         let options = RenderOptions { shading, ..options };
-        let (panel, stats, ms) = timed_render(&scene, &options)?;
+        let (mut panel, stats, ms) = timed_render(&scene, &options)?;
+        if let Some(overlays) = overlays {
+            draw_overlays(&mut panel, &scene, &options, overlays).map_err(input_error)?;
+        }
         let x = k as u32 * (w + GAP);
         sheet.blit(&panel, x, LABEL_BAND);
         let title = shading.title();

@@ -332,32 +332,28 @@ fn draw_light(
     options: &RenderOptions,
 ) {
     let (w, h) = (options.width as f32, options.height as f32);
-    match kind {
-        LightKind::Point { position } => match projector.project(position) {
-            Some(p) if p.x >= 0.0 && p.y >= 0.0 && p.x < w && p.y < h => {
-                let seen = canvas.visible(p.x.floor() as i64, p.y.floor() as i64, p.depth);
-                sun(canvas, (p.x, p.y), seen);
-            }
-            _ => {
-                // Out of view: an arrow at the border, pointing towards it.
-                let (Some(c), Some(to)) = (projector.project(centre), projector.project(position))
-                else {
+    // Towards the light from the model's centre, a short step that stays
+    // in front of the camera even when the light is behind it.
+    let towards = match kind {
+        LightKind::Point { position } => {
+            if let Some(p) = projector.project(position) {
+                if p.x >= 0.0 && p.y >= 0.0 && p.x < w && p.y < h {
+                    let seen = canvas.visible(p.x.floor() as i64, p.y.floor() as i64, p.depth);
+                    sun(canvas, (p.x, p.y), seen);
                     return;
-                };
-                border_arrow(canvas, (c.x, c.y), (to.x - c.x, to.y - c.y), w, h);
+                }
             }
-        },
-        LightKind::Directional { direction } => {
-            let (Some(c), Some(far)) = (
-                projector.project(centre),
-                projector.project(centre - direction.normalize_or_zero()),
-            ) else {
-                return;
-            };
-            // Where the light comes from, on screen.
-            border_arrow(canvas, (c.x, c.y), (far.x - c.x, far.y - c.y), w, h);
+            (position - centre).normalize_or_zero()
         }
-    }
+        LightKind::Directional { direction } => -direction.normalize_or_zero(),
+    };
+    let (Some(c), Some(to)) = (
+        projector.project(centre),
+        projector.project(centre + towards * 0.05),
+    ) else {
+        return;
+    };
+    border_arrow(canvas, (c.x, c.y), (to.x - c.x, to.y - c.y), w, h);
 }
 
 /// A sun: a disc with eight rays; hollow when hidden.
@@ -379,7 +375,8 @@ fn sun(canvas: &mut Canvas<'_>, at: (f32, f32), seen: bool) {
     }
 }
 
-/// An arrow near the image border in direction `dir` from `from`, pointing outward.
+/// A sun near the image border in direction `dir` from `from`, with an
+/// arrow from it pointing back, the way its light travels.
 fn border_arrow(canvas: &mut Canvas<'_>, from: (f32, f32), dir: (f32, f32), w: f32, h: f32) {
     let len = (dir.0 * dir.0 + dir.1 * dir.1).sqrt();
     if len == 0.0 || !len.is_finite() {
@@ -398,21 +395,19 @@ fn border_arrow(canvas: &mut Canvas<'_>, from: (f32, f32), dir: (f32, f32), w: f
     if !t.is_finite() || t < 0.0 {
         return;
     }
-    let tip = (from.0 + d.0 * t, from.1 + d.1 * t);
-    let tail = (tip.0 - d.0 * 28.0, tip.1 - d.1 * 28.0);
+    let at = (from.0 + d.0 * t, from.1 + d.1 * t);
+    sun(canvas, at, true);
+    let tail = (at.0 - d.0 * 16.0, at.1 - d.1 * 16.0);
+    let tip = (at.0 - d.0 * 44.0, at.1 - d.1 * 44.0);
     canvas.stroke(tail, tip, LIGHT);
     let (nx, ny) = (-d.1, d.0);
     for side in [-1.0, 1.0] {
-        canvas.stroke(
-            tip,
-            (
-                tip.0 - d.0 * 8.0 + nx * 5.0 * side,
-                tip.1 - d.1 * 8.0 + ny * 5.0 * side,
-            ),
-            LIGHT,
+        let wing = (
+            tip.0 + d.0 * 8.0 + nx * 5.0 * side,
+            tip.1 + d.1 * 8.0 + ny * 5.0 * side,
         );
+        canvas.stroke(tip, wing, LIGHT);
     }
-    sun(canvas, (tail.0 - d.0 * 14.0, tail.1 - d.1 * 14.0), true);
 }
 
 #[cfg(test)]

@@ -79,13 +79,22 @@ pub struct Curve {
     pub values: Vec<Option<f64>>,
     /// Per sample: the mesh polygon drawn there (methods only).
     pub faces: Vec<Option<usize>>,
+    /// Per sample: which convex piece the scanline walk filled it from (the
+    /// whole polygon, or one triangle of its fan), as a key equal for
+    /// samples of the same piece (methods only).
+    pub pieces: Vec<Option<u64>>,
     /// Per gap between samples `k` and `k + 1`: the intensity's change,
     /// where both are drawn.
     pub derivative: Vec<Option<f64>>,
 }
 
 impl Curve {
-    fn new(kind: CurveKind, values: Vec<Option<f64>>, faces: Vec<Option<usize>>) -> Curve {
+    fn new(
+        kind: CurveKind,
+        values: Vec<Option<f64>>,
+        faces: Vec<Option<usize>>,
+        pieces: Vec<Option<u64>>,
+    ) -> Curve {
         let derivative = values
             .windows(2)
             .map(|w| match (w[0], w[1]) {
@@ -97,19 +106,29 @@ impl Curve {
             kind,
             values,
             faces,
+            pieces,
             derivative,
         }
     }
 
-    /// Indices `k` where the polygon changes between samples `k` and `k + 1`.
+    /// Indices `k` where the line crosses an edge between samples `k` and
+    /// `k + 1`: of a polygon, or of a fan triangle inside one.
     pub fn edges(&self) -> Vec<usize> {
-        self.faces
-            .windows(2)
-            .enumerate()
-            .filter(|(_, w)| w[0].is_some() && w[1].is_some() && w[0] != w[1])
-            .map(|(k, _)| k)
-            .collect()
+        changes(&self.pieces)
     }
+
+    /// Indices `k` where the mesh polygon changes between samples `k` and `k + 1`.
+    pub fn polygon_edges(&self) -> Vec<usize> {
+        changes(&self.faces)
+    }
+}
+
+fn changes<T: PartialEq>(keys: &[Option<T>]) -> Vec<usize> {
+    keys.windows(2)
+        .enumerate()
+        .filter(|(_, w)| w[0].is_some() && w[1].is_some() && w[0] != w[1])
+        .map(|(k, _)| k)
+        .collect()
 }
 
 /// A profile: the sampled pixels and a curve per method (and the exact surface).
@@ -119,6 +138,17 @@ pub struct Profile {
     pub pixels: Vec<(u32, u32)>,
     /// Flat, Gouraud, Phong, then the exact surface when one was given.
     pub curves: Vec<Curve>,
+}
+
+/// A key for the piece a span was walked on: its vertices' window positions.
+fn piece_key(span: &shadelab_core::SpanRecord) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for v in &span.polygon {
+        v.x.to_bits().hash(&mut h);
+        v.y.to_bits().hash(&mut h);
+    }
+    h.finish()
 }
 
 /// The intensity of a light: mean of its channels clamped to 0–1, times 255.
@@ -151,7 +181,7 @@ pub fn profile(
             },
             ProbeRequest {
                 pixels: &pixels,
-                trace: false,
+                trace: true,
             },
         )?;
         let values = records
@@ -164,7 +194,16 @@ pub fn profile(
             })
             .collect();
         let faces = records.iter().map(|r| r.as_ref().map(|r| r.face)).collect();
-        curves.push(Curve::new(CurveKind::Method(shading), values, faces));
+        let pieces = records
+            .iter()
+            .map(|r| r.as_ref().and_then(|r| r.span.as_ref()).map(piece_key))
+            .collect();
+        curves.push(Curve::new(
+            CurveKind::Method(shading),
+            values,
+            faces,
+            pieces,
+        ));
     }
     if let Some(surface) = surface {
         let rays = Rays::new(&scene.camera, options.width, options.height);
@@ -178,6 +217,7 @@ pub fn profile(
         curves.push(Curve::new(
             CurveKind::Exact,
             values,
+            vec![None; pixels.len()],
             vec![None; pixels.len()],
         ));
     }
