@@ -32,6 +32,9 @@ pub enum Shape {
     Cylinder,
     /// Base of radius 1 at y = −1, apex at y = 1, with the base disc.
     Cone,
+    /// The square |x|, |y| ≤ 1 in the plane z = 0, facing +z (seen from
+    /// either side): a polygon that tessellation reproduces exactly.
+    Square,
 }
 
 /// A shape placed in the world: `world = (model − centre) · scale`.
@@ -104,6 +107,7 @@ impl Surface {
             Shape::Torus { ring, tube } => torus(o, d, ring, tube)?,
             Shape::Cylinder => cylinder(o, d)?,
             Shape::Cone => cone(o, d)?,
+            Shape::Square => square(o, d)?,
         };
         Some(SurfaceHit {
             point: (o + d * t - self.centre) * self.scale,
@@ -147,6 +151,15 @@ fn nearest_root(a: f64, b: f64, c: f64) -> Option<f64> {
     } else {
         None
     }
+}
+
+fn square(o: DVec3, d: DVec3) -> Option<(f64, DVec3)> {
+    if d.z == 0.0 {
+        return None;
+    }
+    let t = -o.z / d.z;
+    let p = o + d * t;
+    (t >= 0.0 && p.x.abs() <= 1.0 && p.y.abs() <= 1.0).then(|| (t, DVec3::Z * -d.z.signum()))
 }
 
 fn sphere(o: DVec3, d: DVec3) -> Option<(f64, DVec3)> {
@@ -440,6 +453,42 @@ mod tests {
             // The side's implicit function scaled to a distance, and the base.
             ((rho - (1.0 - p.y) / 2.0) * 2.0 / 5f64.sqrt()).max(-1.0 - p.y)
         });
+    }
+
+    /// On a fine mesh each face's normal is the exact normal near its centroid.
+    #[test]
+    fn exact_normals_match_fine_face_normals() {
+        for (name, shape) in [
+            ("sphere", Shape::Sphere),
+            ("cylinder", Shape::Cylinder),
+            ("cone", Shape::Cone),
+            (
+                "torus",
+                Shape::Torus {
+                    ring: 1.0,
+                    tube: 0.4,
+                },
+            ),
+        ] {
+            let mesh = builtin_model(name, Some(128)).unwrap();
+            let normals = shadelab_core::face_normals(&mesh);
+            let surface = Surface::new(shape);
+            for face in (0..mesh.polygon_count()).step_by(7) {
+                let range = mesh.corner_range(face);
+                let centroid = range
+                    .clone()
+                    .map(|c| mesh.positions()[mesh.corners()[c] as usize].as_dvec3())
+                    .sum::<DVec3>()
+                    / range.len() as f64;
+                let n = normals[face].unwrap().as_dvec3();
+                let hit = surface.intersect(centroid + n * 0.5, -n).unwrap();
+                assert!(
+                    hit.normal.dot(n) > 0.999,
+                    "{name} face {face}: {} vs {n}",
+                    hit.normal
+                );
+            }
+        }
     }
 
     #[test]

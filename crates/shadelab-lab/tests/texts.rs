@@ -15,7 +15,10 @@ fn every_language_has_every_id_with_the_same_placeholders() {
         let these: BTreeSet<&str> = texts.entries().map(|(id, _)| id).collect();
         let missing: Vec<_> = ids.difference(&these).collect();
         let extra: Vec<_> = these.difference(&ids).collect();
-        assert!(missing.is_empty() && extra.is_empty(), "{lang:?}: missing {missing:?}, extra {extra:?}");
+        assert!(
+            missing.is_empty() && extra.is_empty(),
+            "{lang:?}: missing {missing:?}, extra {extra:?}"
+        );
         for (id, text) in texts.entries() {
             assert!(!text.trim().is_empty(), "{lang:?} {id} is empty");
             assert_eq!(
@@ -23,7 +26,10 @@ fn every_language_has_every_id_with_the_same_placeholders() {
                 placeholders(english.get(id)),
                 "{lang:?} {id}: placeholders differ"
             );
-            assert!(!text.contains('\\'), "{lang:?} {id}: a stray line continuation");
+            assert!(
+                !text.contains('\\'),
+                "{lang:?} {id}: a stray line continuation"
+            );
         }
     }
 }
@@ -41,10 +47,22 @@ fn translations_are_translated() {
         }
     }
     // The terms the textbooks use.
-    assert_eq!(Texts::new(Lang::Ru).get("method.gouraud"), "Закраска по Гуро");
-    assert_eq!(Texts::new(Lang::Ru).get("method.phong"), "Закраска по Фонгу");
-    assert_eq!(Texts::new(Lang::Sk).get("method.gouraud"), "Gouraudovo tieňovanie");
-    assert_eq!(Texts::new(Lang::Cs).get("method.phong"), "Phongovo stínování");
+    assert_eq!(
+        Texts::new(Lang::Ru).get("method.gouraud"),
+        "Закраска по Гуро"
+    );
+    assert_eq!(
+        Texts::new(Lang::Ru).get("method.phong"),
+        "Закраска по Фонгу"
+    );
+    assert_eq!(
+        Texts::new(Lang::Sk).get("method.gouraud"),
+        "Gouraudovo tieňovanie"
+    );
+    assert_eq!(
+        Texts::new(Lang::Cs).get("method.phong"),
+        "Phongovo stínování"
+    );
     for (lang, term) in [
         (Lang::Ru, "полосы маха"),
         (Lang::Sk, "machove pásy"),
@@ -58,6 +76,9 @@ fn translations_are_translated() {
 #[test]
 fn fill_replaces_placeholders_and_unknown_ids_show_themselves() {
     let ru = Texts::new(Lang::Ru);
-    assert_eq!(ru.fill("inspect.title", &[("x", "3"), ("y", "4")]), "Пиксель (3, 4)");
+    assert_eq!(
+        ru.fill("inspect.title", &[("x", "3"), ("y", "4")]),
+        "Пиксель (3, 4)"
+    );
     assert_eq!(ru.get("no.such.id"), "no.such.id");
 }
