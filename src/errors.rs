@@ -166,7 +166,7 @@ pub fn run(args: &ErrorsArgs) -> Result<(), Failure> {
 
 /// The smallest of 1, 2, 2.5, 5 times a power of ten that is at least `v`.
 fn nice_ceiling(v: f32) -> f32 {
-    if !(v > 0.0) {
+    if v.is_nan() || v <= 0.0 {
         return 1.0;
     }
     let p = 10f32.powf(v.log10().floor());
