@@ -5,7 +5,7 @@ use std::io::Write;
 
 use anyhow::Context;
 use plotters::prelude::*;
-use shadelab_core::{Image, Rgb8, Shading};
+use shadelab_core::{render, Image, RenderOptions, Rgb8, Shading};
 use shadelab_io::write_png;
 use shadelab_lab::{profile, CurveKind, Profile, ProfileLine, Texts};
 
@@ -62,6 +62,19 @@ pub fn run(args: &ProfileArgs) -> Result<(), Failure> {
     };
     let plot = draw_profile(&data, &texts, &title, matches!(line, ProfileLine::Row(_)))
         .map_err(output_error)?;
+    // Beside the plot, the Gouraud image with the profiled line marked.
+    let (mut picture, _) = render(
+        &loaded.scene,
+        &RenderOptions {
+            shading: Shading::Gouraud,
+            ..options
+        },
+    )
+    .map_err(input_error)?;
+    for &(x, y) in &data.pixels {
+        picture.set_pixel(x, y, MARK);
+    }
+    let plot = with_thumbnail(&plot, &picture);
     write_png(&args.output, &plot)
         .with_context(|| format!("cannot write {}", args.output.display()))
         .map_err(output_error)?;
@@ -125,6 +138,53 @@ fn runs(xs: &[f64], values: &[Option<f64>]) -> Vec<Vec<(f64, f64)>> {
     if !run.is_empty() {
         out.push(run);
     }
+    out
+}
+
+/// The colour of the profiled line on the thumbnail.
+const MARK: Rgb8 = Rgb8::new(230, 20, 20);
+
+/// Width of the column beside the plot that shows the image.
+const THUMB: u32 = 300;
+
+/// `plot` with `picture` scaled into a column on its right.
+fn with_thumbnail(plot: &Image, picture: &Image) -> Image {
+    let mut out = Image::filled(
+        plot.width() + THUMB,
+        plot.height(),
+        Rgb8::new(255, 255, 255),
+    );
+    out.blit(plot, 0, 0);
+    let side = THUMB - 24;
+    let scale = (f64::from(side) / f64::from(picture.width().max(picture.height()))).min(1.0);
+    let (w, h) = (
+        ((f64::from(picture.width()) * scale) as u32).max(1),
+        ((f64::from(picture.height()) * scale) as u32).max(1),
+    );
+    // Nearest-neighbour, keeping any marked pixel of each block visible.
+    let mut thumb = Image::filled(w, h, Rgb8::default());
+    for ty in 0..h {
+        for tx in 0..w {
+            let (x0, y0) = (
+                (f64::from(tx) / scale) as u32,
+                (f64::from(ty) / scale) as u32,
+            );
+            let (x1, y1) = (
+                ((f64::from(tx + 1) / scale) as u32).clamp(x0 + 1, picture.width()),
+                ((f64::from(ty + 1) / scale) as u32).clamp(y0 + 1, picture.height()),
+            );
+            let mut c = picture.pixel(x0.min(picture.width() - 1), y0.min(picture.height() - 1));
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    if picture.pixel(x, y) == MARK {
+                        c = MARK;
+                    }
+                }
+            }
+            thumb.set_pixel(tx, ty, c);
+        }
+    }
+    out.blit(&thumb, plot.width() + (THUMB - w) / 2, 60);
     out
 }
 
@@ -192,6 +252,8 @@ fn draw_profile(data: &Profile, texts: &Texts, title: &str, row: bool) -> anyhow
             .configure_mesh()
             .x_desc(texts.get("plot.position"))
             .y_desc(texts.get("plot.intensity"))
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_label_formatter(&|v| format!("{v:.0}"))
             .label_style(font(13.0, BLACK))
             .axis_desc_style(font(14.0, BLACK))
             .light_line_style(TRANSPARENT)
@@ -245,6 +307,8 @@ fn draw_profile(data: &Profile, texts: &Texts, title: &str, row: bool) -> anyhow
             .configure_mesh()
             .x_desc(texts.get("plot.position"))
             .y_desc(texts.get("plot.derivative"))
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_label_formatter(&|v| format!("{v:.1}"))
             .label_style(font(13.0, BLACK))
             .axis_desc_style(font(14.0, BLACK))
             .light_line_style(TRANSPARENT)

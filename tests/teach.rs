@@ -184,7 +184,7 @@ fn profile_writes_a_plot_and_reports_the_edges() {
         "{text}"
     );
     let (w, h, rgb) = png(&dir.path().join("p.png"));
-    assert_eq!((w, h), (1000, 720));
+    assert_eq!((w, h), (1300, 720));
     let c = colours(&rgb);
     // White paper, black text, and the four curves' colours.
     for curve in [[230, 120, 20], [40, 110, 220], [30, 160, 60]] {

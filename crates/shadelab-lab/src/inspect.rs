@@ -533,6 +533,13 @@ fn method_text(out: &mut String, m: &MethodView, insp: &Inspection, t: &Texts) {
         let _ = writeln!(out, "{line}");
         if let Some(terms) = v.corner.as_ref().and_then(|c| c.lighting.as_ref()) {
             lighting_lines(out, terms, insp.options.specular, "       ", t);
+            if terms.total.clamped() != terms.total {
+                let _ = writeln!(
+                    out,
+                    "       {}",
+                    t.fill("inspect.clamped", &[("value", &rgb(terms.total.clamped()))])
+                );
+            }
         }
     }
     if let Some(span) = &m.span {
