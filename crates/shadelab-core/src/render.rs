@@ -547,6 +547,12 @@ trait Method<const N: usize> {
     /// The light of a fragment with interpolated attributes `attrs`, before
     /// clamping and rounding.
     fn shade(&mut self, attrs: &[f32; N]) -> Rgb;
+    /// The pixel for light `lit` from [`Method::shade`]: `Rgb8::from_rgb`,
+    /// which a method with one colour per polygon computes once.
+    #[inline(always)]
+    fn pixel(&self, lit: Rgb) -> Rgb8 {
+        Rgb8::from_rgb(lit)
+    }
     /// Lighting evaluations so far.
     fn evaluations(&self) -> u64;
 }
@@ -567,6 +573,7 @@ impl SceneRefs<'_> {
 struct FlatMethod<'a> {
     scene: &'a SceneRefs<'a>,
     color: Rgb,
+    pixel: Rgb8,
     evaluations: u64,
 }
 
@@ -586,10 +593,15 @@ impl Method<0> for FlatMethod<'_> {
         let normal = if back { -normal } else { normal };
         self.evaluations += 1;
         self.color = self.scene.lighting.eval(centroid, normal, Terms::Full);
+        self.pixel = Rgb8::from_rgb(self.color);
     }
 
     fn shade(&mut self, _: &[f32; 0]) -> Rgb {
         self.color
+    }
+
+    fn pixel(&self, _: Rgb) -> Rgb8 {
+        self.pixel
     }
 
     fn evaluations(&self) -> u64 {
@@ -660,24 +672,51 @@ impl Method<6> for PhongMethod<'_> {
     }
 }
 
+/// How a fragment's light becomes a pixel: true colour, or a palette entry.
+/// A type parameter rather than a branch, so true colour pays nothing.
+trait Output: Copy {
+    fn pixel<const N: usize, M: Method<N>>(&self, method: &M, lit: Rgb) -> Rgb8;
+}
+
+#[derive(Clone, Copy)]
+struct TrueColor;
+
+impl Output for TrueColor {
+    #[inline(always)]
+    fn pixel<const N: usize, M: Method<N>>(&self, method: &M, lit: Rgb) -> Rgb8 {
+        method.pixel(lit)
+    }
+}
+
+/// The palette and the material colour its shades are of.
+#[derive(Clone, Copy)]
+struct Indexed(Palette, Rgb);
+
+impl Output for Indexed {
+    fn pixel<const N: usize, M: Method<N>>(&self, _: &M, lit: Rgb) -> Rgb8 {
+        self.0.shade(lit, self.1).color
+    }
+}
+
 /// Connects the rasterizer to a target and a shading method.
-struct ShadingSink<'a, const N: usize, M, T> {
+struct ShadingSink<'a, const N: usize, M, T, O> {
     method: &'a mut M,
     target: &'a mut T,
     shaded: u64,
-    /// The palette and the material colour its shades are of.
-    palette: Option<(Palette, Rgb)>,
+    output: O,
 }
 
-impl<const N: usize, M: Method<N>, T: Target> FragmentSink<N> for ShadingSink<'_, N, M, T> {
+impl<const N: usize, M: Method<N>, T: Target, O: Output> FragmentSink<N>
+    for ShadingSink<'_, N, M, T, O>
+{
+    // Inlined into the span loop, as it was before the probe's hooks made
+    // it look bigger to the compiler (the hooks compile to nothing).
+    #[inline]
     fn fragment(&mut self, x: u32, y: u32, depth: f32, attrs: &[f32; N]) {
         if self.target.test(x, y, depth) {
             self.shaded += 1;
             let lit = self.method.shade(attrs);
-            let color = match self.palette {
-                None => Rgb8::from_rgb(lit),
-                Some((palette, base)) => palette.shade(lit, base).color,
-            };
+            let color = self.output.pixel(&*self.method, lit);
             self.target.shaded(x, y, attrs, lit, color);
             self.target.write(x, y, color);
         }
@@ -740,6 +779,7 @@ pub(crate) fn draw(
             let mut m = FlatMethod {
                 scene: &refs,
                 color: Rgb::BLACK,
+                pixel: Rgb8::default(),
                 evaluations: 0,
             };
             draw_with(&refs, options, view_projection, &mut m, target)
@@ -766,6 +806,30 @@ pub(crate) fn draw(
             draw_with(&refs, options, view_projection, &mut m, target)
         }
     }
+}
+
+/// Rasterizes one window polygon through the method into the target;
+/// returns the fragments shaded.
+fn fill<const N: usize, M: Method<N>, T: Target, O: Output>(
+    window: &[ScreenVertex<N>],
+    options: &RenderOptions,
+    walk: &ScanlineOptions,
+    method: &mut M,
+    target: &mut T,
+    output: O,
+) -> u64 {
+    let (width, height) = (options.width, options.height);
+    let mut sink = ShadingSink {
+        method,
+        target,
+        shaded: 0,
+        output,
+    };
+    match options.polygons {
+        Polygons::Fans => rasterize_fan_with(window, width, height, walk, &mut sink),
+        Polygons::Whole => rasterize_polygon_with(window, width, height, walk, &mut sink),
+    }
+    sink.shaded
 }
 
 fn draw_with<const N: usize, M: Method<N>, T: Target>(
@@ -833,17 +897,13 @@ fn draw_with<const N: usize, M: Method<N>, T: Target>(
         stats.rasterized += 1;
         method.begin_polygon(face, mesh.corner_range(face), back);
         target.polygon(face, back);
-        let mut sink = ShadingSink {
-            method: &mut *method,
-            target: &mut *target,
-            shaded: 0,
-            palette: options.palette.map(|p| (p, scene.lighting.material.kd)),
+        shaded += match options.palette {
+            None => fill(&window, options, &walk, method, target, TrueColor),
+            Some(p) => {
+                let output = Indexed(p, scene.lighting.material.kd);
+                fill(&window, options, &walk, method, target, output)
+            }
         };
-        match options.polygons {
-            Polygons::Fans => rasterize_fan_with(&window, width, height, &walk, &mut sink),
-            Polygons::Whole => rasterize_polygon_with(&window, width, height, &walk, &mut sink),
-        }
-        shaded += sink.shaded;
     }
     stats.fragments_shaded = shaded;
     stats.lighting_evaluations = method.evaluations();

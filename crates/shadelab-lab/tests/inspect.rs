@@ -287,3 +287,80 @@ fn the_text_fills_in_the_formulas_in_every_language() {
     let text = inspection_text(&background, &Texts::new(Lang::En));
     assert!(text.contains("background colour (0, 255, 0)"), "{text}");
 }
+
+#[test]
+fn blinn_phong_is_explained_with_the_halfway_vector() {
+    let scene = scene("sphere", 10, Vec3::new(0.8, 1.1, 3.6));
+    let options = RenderOptions {
+        specular: Specular::BlinnPhong,
+        gouraud_specular: true,
+        ..options(Interpolation::Perspective, Polygons::Fans)
+    };
+    let images: Vec<_> = Shading::ALL
+        .iter()
+        .map(|&shading| {
+            render(&scene, &RenderOptions { shading, ..options })
+                .unwrap()
+                .0
+        })
+        .collect();
+    let mut drawn = 0;
+    for (x, y) in [(30, 20), (36, 30), (44, 26), (40, 40), (28, 34)] {
+        drawn += usize::from(check_pixel(&scene, &options, &images, x, y));
+    }
+    assert!(drawn >= 4);
+    let text = inspection_text(
+        &inspect(&scene, &options, 36, 30, &Shading::ALL).unwrap(),
+        &Texts::new(Lang::En),
+    );
+    assert!(
+        text.contains("h = normalize(l + v)") && !text.contains("r·v = "),
+        "{text}"
+    );
+}
+
+/// A floor running under the camera is clipped by the near plane: the
+/// vertices clipping made are marked, and the colour is still the pixel's.
+#[test]
+fn clipped_polygons_are_explained_too() {
+    let mesh = shadelab_core::Mesh::from_polygons(
+        vec![
+            Vec3::new(-10.0, -1.0, 10.0),
+            Vec3::new(10.0, -1.0, 10.0),
+            Vec3::new(10.0, -1.0, -10.0),
+            Vec3::new(-10.0, -1.0, -10.0),
+        ],
+        [[0u32, 1, 2, 3]],
+    )
+    .unwrap();
+    let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
+    let mut floor = scene("sphere", 8, Vec3::new(0.0, 0.0, 0.0));
+    floor.mesh = mesh;
+    floor.normals = normals;
+    floor.camera.eye = Vec3::new(0.0, 0.0, 2.0);
+    floor.camera.target = Vec3::new(0.0, -0.5, -3.0);
+    for polygons in [Polygons::Whole, Polygons::Fans] {
+        let options = options(Interpolation::Perspective, polygons);
+        let images: Vec<_> = Shading::ALL
+            .iter()
+            .map(|&shading| {
+                render(&floor, &RenderOptions { shading, ..options })
+                    .unwrap()
+                    .0
+            })
+            .collect();
+        let insp = inspect(&floor, &options, 36, 55, &Shading::ALL).unwrap();
+        for (m, image) in insp.methods.iter().zip(&images) {
+            assert_eq!(m.color, image.pixel(36, 55), "{polygons:?} {:?}", m.shading);
+            assert!(m.fragment.is_some());
+            assert!(
+                m.clipped,
+                "{polygons:?} {:?}: the floor is clipped",
+                m.shading
+            );
+            assert!(m.walked.iter().any(|v| v.corner.is_none()));
+        }
+        let text = inspection_text(&insp, &Texts::new(Lang::En));
+        assert!(text.contains("made by clipping"), "{text}");
+    }
+}

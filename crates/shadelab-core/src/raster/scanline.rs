@@ -68,24 +68,13 @@ impl ScanlineOptions {
     }
 }
 
-/// Rounds attributes down to multiples of 2^−bits (depth and 1/w untouched).
-#[derive(Clone, Copy)]
-struct Grid {
-    scale: f64,
-}
-
-impl Grid {
-    fn new(bits: Option<u32>) -> Option<Grid> {
-        bits.map(|b| Grid {
-            scale: f64::from(1u32 << b.clamp(MIN_FRACTION_BITS, MAX_FRACTION_BITS)),
-        })
-    }
-
-    fn snap<const N: usize>(grid: Option<Grid>, v: &mut Varyings<N>) {
-        if let Some(g) = grid {
-            for a in &mut v.attrs {
-                *a = (*a * g.scale).floor() / g.scale;
-            }
+/// Rounds attributes down to multiples of 1/`scale` (depth and 1/w
+/// untouched) when `FIXED`; compiled away otherwise.
+#[inline(always)]
+fn snap<const N: usize, const FIXED: bool>(scale: f64, v: &mut Varyings<N>) {
+    if FIXED {
+        for a in &mut v.attrs {
+            *a = (*a * scale).floor() / scale;
         }
     }
 }
@@ -214,11 +203,11 @@ struct EdgeWalk<const N: usize> {
 }
 
 impl<const N: usize> EdgeWalk<N> {
-    fn start(
+    fn start<const FIXED: bool>(
         edge: &Edge<'_, N>,
         row: i64,
         interpolation: Interpolation,
-        grid: Option<Grid>,
+        scale: f64,
     ) -> EdgeWalk<N> {
         let (a, b) = (edge.top, edge.bottom);
         let dy = b.y - a.y;
@@ -236,8 +225,8 @@ impl<const N: usize> EdgeWalk<N> {
             t,
             rate,
         );
-        Grid::snap(grid, &mut varyings);
-        Grid::snap(grid, &mut step);
+        snap::<N, FIXED>(scale, &mut varyings);
+        snap::<N, FIXED>(scale, &mut step);
         EdgeWalk {
             end_row: edge.rows.end,
             ends: edge.ends,
@@ -422,7 +411,8 @@ fn rasterize_triangle<const N: usize>(
     }
 }
 
-/// The scanline walk proper, for a convex counter-clockwise polygon.
+/// The scanline walk for a convex counter-clockwise polygon, in floating
+/// or fixed point.
 fn rasterize_convex<const N: usize>(
     polygon: &[ScreenVertex<N>],
     width: u32,
@@ -430,8 +420,25 @@ fn rasterize_convex<const N: usize>(
     options: &ScanlineOptions,
     sink: &mut impl FragmentSink<N>,
 ) {
+    match options.fraction_bits {
+        None => walk_convex::<N, false>(polygon, width, height, options, 1.0, sink),
+        Some(bits) => {
+            let scale = f64::from(1u32 << bits.clamp(MIN_FRACTION_BITS, MAX_FRACTION_BITS));
+            walk_convex::<N, true>(polygon, width, height, options, scale, sink);
+        }
+    }
+}
+
+/// The scanline walk proper.
+fn walk_convex<const N: usize, const FIXED: bool>(
+    polygon: &[ScreenVertex<N>],
+    width: u32,
+    height: u32,
+    options: &ScanlineOptions,
+    scale: f64,
+    sink: &mut impl FragmentSink<N>,
+) {
     let interpolation = options.interpolation;
-    let grid = Grid::new(options.fraction_bits);
     let image_rows = 0..i64::from(height);
     let clip_rows =
         |r: std::ops::Range<i64>| r.start.max(image_rows.start)..r.end.min(image_rows.end);
@@ -475,7 +482,7 @@ fn rasterize_convex<const N: usize>(
                 .by_ref()
                 .find(|e| e.rows.end > row)
                 .filter(|e| e.rows.start <= row)
-                .map(|e| EdgeWalk::start(e, row, interpolation, grid));
+                .map(|e| EdgeWalk::start::<FIXED>(e, row, interpolation, scale));
         }
     };
     let mut attrs = [0f32; N];
@@ -495,8 +502,8 @@ fn rasterize_convex<const N: usize>(
                 (first as f64 + 0.5 - p) / (q - p),
                 1.0 / (q - p),
             );
-            Grid::snap(grid, &mut v);
-            Grid::snap(grid, &mut step);
+            snap::<N, FIXED>(scale, &mut v);
+            snap::<N, FIXED>(scale, &mut step);
             if sink.wants_trace(row as u32) {
                 sink.trace(&SpanTrace {
                     polygon,
