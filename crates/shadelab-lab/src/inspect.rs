@@ -605,14 +605,29 @@ fn method_text(out: &mut String, m: &MethodView, insp: &Inspection, t: &Texts) {
             )
         );
     }
-    let _ = writeln!(
-        out,
-        "   {}",
-        t.fill(
-            "inspect.final",
-            &[("lit", &rgb(f.lit)), ("color", &rgb8(f.color))]
-        )
-    );
+    let _ = match (&m.palette, insp.options.palette) {
+        (Some(shade), Some(palette)) => writeln!(
+            out,
+            "   {}",
+            t.fill(
+                "inspect.final_palette",
+                &[
+                    ("index", &shade.index.to_string()),
+                    ("shade", &shade.shade.to_string()),
+                    ("top", &(palette.shades - 1).to_string()),
+                    ("color", &rgb8(f.color)),
+                ]
+            )
+        ),
+        _ => writeln!(
+            out,
+            "   {}",
+            t.fill(
+                "inspect.final",
+                &[("lit", &rgb(f.lit)), ("color", &rgb8(f.color))]
+            )
+        ),
+    };
 }
 
 fn span_text(out: &mut String, m: &MethodView, span: &SpanView, f: &FragmentRecord, t: &Texts) {

@@ -364,3 +364,33 @@ fn clipped_polygons_are_explained_too() {
         assert!(text.contains("made by clipping"), "{text}");
     }
 }
+
+#[test]
+fn palette_mode_explains_the_entry() {
+    let scene = scene("sphere", 8, Vec3::new(0.8, 1.1, 3.6));
+    let options = RenderOptions {
+        palette: Some(shadelab_core::Palette {
+            shades: 6,
+            offset: 40,
+        }),
+        ..options(Interpolation::Screen, Polygons::Whole)
+    };
+    let images: Vec<_> = Shading::ALL
+        .iter()
+        .map(|&shading| {
+            render(&scene, &RenderOptions { shading, ..options })
+                .unwrap()
+                .0
+        })
+        .collect();
+    let insp = inspect(&scene, &options, 36, 30, &Shading::ALL).unwrap();
+    for (m, image) in insp.methods.iter().zip(&images) {
+        let p = m.palette.expect("a palette shade");
+        assert_eq!(m.color, image.pixel(36, 30));
+        assert_eq!(p.color, m.color);
+        assert_eq!(p.index, 40 + p.shade);
+        assert!(p.shade < 6);
+    }
+    let text = inspection_text(&insp, &Texts::new(Lang::En));
+    assert!(text.contains("palette entry 4"), "{text}");
+}
