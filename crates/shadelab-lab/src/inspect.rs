@@ -441,6 +441,9 @@ pub fn inspection_text(inspection: &Inspection, texts: &Texts) -> String {
         Interpolation::Screen => "inspect.interpolation_screen",
     };
     let _ = writeln!(out, "{}", texts.get(interp_id));
+    if o.rasterizer == shadelab_core::Rasterizer::Tiled {
+        let _ = writeln!(out, "{}", texts.get("inspect.reference"));
+    }
     if let Some(bits) = o.fixed_point_bits {
         let _ = writeln!(
             out,
