@@ -171,12 +171,11 @@ pub struct FragmentRecord {
 }
 
 struct ProbeTarget {
-    width: u32,
-    /// Per pixel of the image: 1 + its slot, or 0 when not watched.
-    slot_of: Vec<u32>,
+    /// Per image row: the watched columns of that row, sorted, with their
+    /// slots (memory in proportion to the rows and the pixels watched).
+    rows: Vec<Vec<(u32, usize)>>,
     depth: Vec<f32>,
     records: Vec<Option<FragmentRecord>>,
-    rows: Vec<bool>,
     trace: bool,
     pending: Vec<Option<SpanRecord>>,
     face: usize,
@@ -185,8 +184,13 @@ struct ProbeTarget {
 
 impl ProbeTarget {
     fn slot(&self, x: u32, y: u32) -> Option<usize> {
-        let s = self.slot_of[y as usize * self.width as usize + x as usize];
-        (s > 0).then(|| s as usize - 1)
+        let row = &self.rows[y as usize];
+        if row.is_empty() {
+            return None;
+        }
+        row.binary_search_by_key(&x, |&(c, _)| c)
+            .ok()
+            .map(|k| row[k].1)
     }
 }
 
@@ -209,7 +213,7 @@ impl Target for ProbeTarget {
     }
 
     fn wants_trace(&self, y: u32) -> bool {
-        self.trace && self.rows[y as usize]
+        self.trace && !self.rows[y as usize].is_empty()
     }
 
     fn trace<const N: usize>(&mut self, span: &SpanTrace<'_, N>) {
@@ -257,32 +261,32 @@ pub fn probe(
     validate(scene, &options)?;
     let (w, h) = (options.width, options.height);
     let mut target = ProbeTarget {
-        width: w,
-        slot_of: vec![0; w as usize * h as usize],
+        rows: vec![Vec::new(); h as usize],
         depth: Vec::new(),
         records: Vec::new(),
-        rows: vec![false; h as usize],
         trace: request.trace,
         pending: Vec::new(),
         face: 0,
         back: false,
     };
     // A pixel asked for twice shares one slot.
-    let mut slot_of_request = Vec::with_capacity(request.pixels.len());
-    for &(x, y) in request.pixels {
-        if x >= w || y >= h {
-            slot_of_request.push(None);
-            continue;
-        }
-        let at = y as usize * w as usize + x as usize;
-        if target.slot_of[at] == 0 {
+    let mut inside: Vec<(u32, u32, usize)> = request
+        .pixels
+        .iter()
+        .enumerate()
+        .filter(|(_, &(x, y))| x < w && y < h)
+        .map(|(k, &(x, y))| (y, x, k))
+        .collect();
+    inside.sort_unstable();
+    let mut slot_of_request = vec![None; request.pixels.len()];
+    for (i, &(y, x, k)) in inside.iter().enumerate() {
+        if i == 0 || (inside[i - 1].0, inside[i - 1].1) != (y, x) {
             target.depth.push(1.0);
             target.records.push(None);
             target.pending.push(None);
-            target.slot_of[at] = target.depth.len() as u32;
-            target.rows[y as usize] = true;
+            target.rows[y as usize].push((x, target.depth.len() - 1));
         }
-        slot_of_request.push(Some(target.slot_of[at] as usize - 1));
+        slot_of_request[k] = Some(target.depth.len() - 1);
     }
     draw(scene, &options, &lighting(scene, &options), &mut target);
     Ok(slot_of_request

@@ -13,6 +13,17 @@
 //! | cost | `cost` | [`measure_cost`] |
 //! | texts in four languages | `texts` | [`Texts`], [`Lang`] |
 //!
+//! For a viewer: a click on pixel (x, y) of a panel is
+//! [`inspect`]`(scene, options, x, y, &[shading])`, shown with
+//! [`inspection_text`] or from its fields; a chosen row is
+//! [`profile()`]`(scene, options, ProfileLine::Row(y), surface)`, whose curves
+//! are plotted as they are; [`error_maps`] gives each panel's
+//! [`ErrorMap::heat_image`] with [`heat_bar`] as the scale; overlays are
+//! [`draw_overlays`] on a rendered image; [`measure_cost`] takes the page's
+//! clock; the texts are [`Texts::new`]`(`[`Lang::negotiate`]`(navigator
+//! languages))`. The exact surface of a built-in model is
+//! [`Surface::for_builtin`].
+//!
 //! The inspector and the profiles read the renderer's own numbers through
 //! [`shadelab_core::probe`]; the modes of old hardware they explain
 //! (fixed-point stepping, the indexed palette) are render options of the
