@@ -121,7 +121,7 @@ pub struct ErrorsArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// The error at the top of the colour scale, 0–255 (default: the largest error).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub scale: Option<f32>,
     /// Language of the labels.
     #[arg(long, value_enum, default_value = "en")]

@@ -115,9 +115,7 @@ fn gouraud_derivative_is_constant_on_each_piece_and_kinks_at_edges() {
             kinks + 1 >= slopes.len() - 1,
             "{polygons:?}: slopes {slopes:?}"
         );
-        // Phong's derivative changes continuously: no jump bigger than a
-        // tenth of Gouraud's largest kink... is not guaranteed at edges, but
-        // Phong follows the exact surface far more closely than Gouraud.
+        // Phong shading follows the exact surface more closely than Gouraud.
         let exact = &p.curves[3];
         let err = |c: &shadelab_lab::Curve| -> f64 {
             c.values
