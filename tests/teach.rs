@@ -246,7 +246,7 @@ fn errors_writes_heat_maps_and_ranks_the_methods() {
     fails_with(
         &run(dir.path(), &["errors", "--scale", "-1", "-o", "t.png"]),
         2,
-        "",
+        "--scale must be a positive number",
     );
     assert!(!dir.path().join("t.png").exists());
 }
