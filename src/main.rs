@@ -6,6 +6,8 @@
 
 mod cli;
 mod label;
+mod server;
+mod view;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -131,6 +133,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
             };
             list().map_err(output_error)
         }
+        Command::View(args) => view::view(&view::ViewRequest {
+            host: args.host,
+            port: args.port,
+            open: !args.no_open,
+            export: args.export.as_deref(),
+        })
+        .map_err(output_error),
     }
 }
 
