@@ -8,9 +8,18 @@
 //! for the module, which browsers require to compile it while it streams
 //! in), `nosniff`, and a content security policy that lets the page load
 //! only the server's own files: no request leaves the machine.
+//!
+//! It is a few dozen lines over `std::net`: one thread and one request per
+//! connection (`Connection: close`), which is all a page of a dozen files
+//! needs. (`tiny_http` 0.12, tried first, leaves a request unanswered when a
+//! browser opens several connections at once: its task pool queues the work
+//! behind threads that wait on idle keep-alive connections.)
 
-use std::net::SocketAddr;
+use std::io::{Read, Write};
+use std::net::{SocketAddr, TcpListener, TcpStream};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
+use std::time::Duration;
 
 mod site {
     include!(concat!(env!("OUT_DIR"), "/site.rs"));
@@ -106,9 +115,16 @@ pub fn content_type(name: &str) -> &'static str {
     }
 }
 
+/// Longest request head read (request line and headers), bytes.
+const MAX_HEAD: usize = 8 * 1024;
+/// Most connections served at once; more are refused with 503.
+const MAX_CONNECTIONS: usize = 64;
+/// How long a connection may take to send its request.
+const READ_TIMEOUT: Duration = Duration::from_secs(10);
+
 /// A running server.
 pub struct Server {
-    inner: Arc<tiny_http::Server>,
+    listener: TcpListener,
     addr: SocketAddr,
 }
 
@@ -117,16 +133,10 @@ impl Server {
     ///
     /// # Errors
     /// When the address cannot be bound (in use, not this machine's).
-    pub fn bind(addr: SocketAddr) -> Result<Server, String> {
-        let inner = tiny_http::Server::http(addr).map_err(|e| e.to_string())?;
-        let addr = inner
-            .server_addr()
-            .to_ip()
-            .ok_or_else(|| "the server has no IP address".to_string())?;
-        Ok(Server {
-            inner: Arc::new(inner),
-            addr,
-        })
+    pub fn bind(addr: SocketAddr) -> std::io::Result<Server> {
+        let listener = TcpListener::bind(addr)?;
+        let addr = listener.local_addr()?;
+        Ok(Server { listener, addr })
     }
 
     /// The address it listens on.
@@ -134,66 +144,144 @@ impl Server {
         self.addr
     }
 
-    /// Answers requests with `site`'s files until the process ends, on a
-    /// few threads so that one slow client does not hold up the others.
+    /// Answers requests with `site`'s files until the process ends: one
+    /// thread per connection, one request per connection.
     pub fn run(self, site: Site) {
         let site = Arc::new(site);
-        let workers: Vec<_> = (0..4)
-            .map(|_| {
-                let server = Arc::clone(&self.inner);
-                let site = Arc::clone(&site);
-                std::thread::spawn(move || {
-                    for request in server.incoming_requests() {
-                        respond(&site, request);
-                    }
-                })
-            })
-            .collect();
-        for worker in workers {
-            let _ = worker.join();
+        let active = Arc::new(AtomicUsize::new(0));
+        for stream in self.listener.incoming() {
+            let Ok(mut stream) = stream else { continue };
+            if active.load(Ordering::Acquire) >= MAX_CONNECTIONS {
+                let _ = write_response(&mut stream, &Response::status(503, "busy"), false);
+                continue;
+            }
+            active.fetch_add(1, Ordering::AcqRel);
+            let site = Arc::clone(&site);
+            let active = Arc::clone(&active);
+            std::thread::spawn(move || {
+                serve_connection(&site, stream);
+                active.fetch_sub(1, Ordering::AcqRel);
+            });
         }
     }
 }
 
-fn header(name: &str, value: &str) -> tiny_http::Header {
-    tiny_http::Header::from_bytes(name.as_bytes(), value.as_bytes())
-        .expect("header names and values here are ASCII")
+/// What the server sends back.
+#[derive(Debug, PartialEq)]
+pub struct Response {
+    /// HTTP status code.
+    pub status: u16,
+    /// Content type of the body.
+    pub content_type: &'static str,
+    /// The body.
+    pub body: &'static [u8],
+    /// Extra headers.
+    pub headers: Vec<(&'static str, &'static str)>,
 }
 
-fn respond(site: &Site, request: tiny_http::Request) {
-    use tiny_http::{Method, Response, StatusCode};
-    let common = [
-        header("X-Content-Type-Options", "nosniff"),
-        header("Content-Security-Policy", CSP),
-        header("Cache-Control", "no-cache"),
-        header("Referrer-Policy", "no-referrer"),
-    ];
-    let head = *request.method() == Method::Head;
-    if !(head || *request.method() == Method::Get) {
-        let mut response = Response::from_string("method not allowed\n")
-            .with_status_code(StatusCode(405))
-            .with_header(header("Allow", "GET, HEAD"))
-            .with_header(header("Content-Type", "text/plain; charset=utf-8"));
-        for h in common {
-            response.add_header(h);
+impl Response {
+    fn status(status: u16, text: &'static str) -> Response {
+        Response {
+            status,
+            content_type: "text/plain; charset=utf-8",
+            body: text.as_bytes(),
+            headers: Vec::new(),
         }
-        let _ = request.respond(response);
-        return;
     }
-    let (status, body, kind) = match site.lookup(request.url()) {
-        Some((body, kind)) => (200, body, kind),
-        None => (404, &b"not found\n"[..], "text/plain; charset=utf-8"),
+}
+
+fn reason(status: u16) -> &'static str {
+    match status {
+        200 => "OK",
+        400 => "Bad Request",
+        404 => "Not Found",
+        405 => "Method Not Allowed",
+        431 => "Request Header Fields Too Large",
+        503 => "Service Unavailable",
+        _ => "Error",
+    }
+}
+
+/// The response to a request head (request line and headers), and whether
+/// the body is to be left out (`HEAD`).
+pub fn answer(site: &Site, head: &[u8]) -> (Response, bool) {
+    let Some(line) = head.split(|&b| b == b'\n').next() else {
+        return (Response::status(400, "bad request\n"), false);
     };
-    let mut response = Response::from_data(if head { &[][..] } else { body })
-        .with_status_code(StatusCode(status))
-        .with_header(header("Content-Type", kind));
-    if head {
-        response = response.with_header(header("Content-Length", &body.len().to_string()));
+    let line = String::from_utf8_lossy(line);
+    let mut parts = line.trim_end_matches('\r').split(' ');
+    let (Some(method), Some(target), Some(version), None) =
+        (parts.next(), parts.next(), parts.next(), parts.next())
+    else {
+        return (Response::status(400, "bad request\n"), false);
+    };
+    if !version.starts_with("HTTP/1.") {
+        return (Response::status(400, "bad request\n"), false);
     }
-    for h in common {
-        response.add_header(h);
+    let head_only = method == "HEAD";
+    if !(head_only || method == "GET") {
+        let mut r = Response::status(405, "method not allowed\n");
+        r.headers.push(("Allow", "GET, HEAD"));
+        return (r, false);
     }
-    let _ = request.respond(response);
+    let response = match site.lookup(target) {
+        Some((body, content_type)) => Response {
+            status: 200,
+            content_type,
+            body,
+            headers: Vec::new(),
+        },
+        None => Response::status(404, "not found\n"),
+    };
+    (response, head_only)
+}
+
+fn serve_connection(site: &Site, mut stream: TcpStream) {
+    let _ = stream.set_read_timeout(Some(READ_TIMEOUT));
+    let _ = stream.set_write_timeout(Some(READ_TIMEOUT));
+    let mut head = Vec::with_capacity(1024);
+    let mut buf = [0u8; 1024];
+    let complete = loop {
+        if head.windows(4).any(|w| w == b"\r\n\r\n") || head.windows(2).any(|w| w == b"\n\n") {
+            break true;
+        }
+        if head.len() > MAX_HEAD {
+            break false;
+        }
+        match stream.read(&mut buf) {
+            Ok(0) | Err(_) => return,
+            Ok(n) => head.extend_from_slice(&buf[..n]),
+        }
+    };
+    let (response, head_only) = if complete {
+        answer(site, &head)
+    } else {
+        (Response::status(431, "request head too large\n"), false)
+    };
+    let _ = write_response(&mut stream, &response, head_only);
+    let _ = stream.flush();
+    let _ = stream.shutdown(std::net::Shutdown::Write);
+}
+
+fn write_response(stream: &mut TcpStream, r: &Response, head_only: bool) -> std::io::Result<()> {
+    let mut head = format!(
+        "HTTP/1.1 {} {}\r\nContent-Type: {}\r\nContent-Length: {}\r\nConnection: close\r\n\
+         X-Content-Type-Options: nosniff\r\nContent-Security-Policy: {CSP}\r\n\
+         Cache-Control: no-cache\r\nReferrer-Policy: no-referrer\r\n",
+        r.status,
+        reason(r.status),
+        r.content_type,
+        r.body.len()
+    );
+    for (name, value) in &r.headers {
+        head.push_str(&format!("{name}: {value}\r\n"));
+    }
+    head.push_str("\r\n");
+    stream.write_all(head.as_bytes())?;
+    if !head_only {
+        stream.write_all(r.body)?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -225,6 +313,21 @@ mod tests {
         assert_eq!(content_type("a.css"), "text/css; charset=utf-8");
         assert_eq!(content_type("a.json"), "application/json");
         assert_eq!(content_type("noextension"), "application/octet-stream");
+    }
+
+    #[test]
+    fn requests_are_answered_by_method() {
+        let (r, head_only) = answer(&site(), b"GET /js/main.js HTTP/1.1\r\nHost: x\r\n\r\n");
+        assert_eq!((r.status, r.body, head_only), (200, &b"export {}"[..], false));
+        let (r, head_only) = answer(&site(), b"HEAD / HTTP/1.1\r\n\r\n");
+        assert_eq!((r.status, head_only), (200, true));
+        let (r, _) = answer(&site(), b"POST / HTTP/1.1\r\n\r\n");
+        assert_eq!(r.status, 405);
+        assert_eq!(r.headers, vec![("Allow", "GET, HEAD")]);
+        for bad in [&b"GET /\r\n\r\n"[..], b"GET / HTTP/1.1 extra\r\n\r\n", b"GET / SPDY/3\r\n\r\n", b"\r\n\r\n"] {
+            assert_eq!(answer(&site(), bad).0.status, 400, "{:?}", String::from_utf8_lossy(bad));
+        }
+        assert_eq!(answer(&site(), b"GET /../etc/passwd HTTP/1.1\r\n\r\n").0.status, 404);
     }
 
     #[test]

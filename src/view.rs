@@ -33,7 +33,7 @@ pub fn view(request: &ViewRequest<'_>) -> anyhow::Result<()> {
     let addr = SocketAddr::new(request.host, request.port);
     let server = Server::bind(addr).map_err(|e| {
         let hint = if request.port != 0 {
-            format!(" (another port: --port N, or --port 0 for any free one)")
+            " (another port: --port N, or --port 0 for any free one)".to_string()
         } else {
             String::new()
         };
