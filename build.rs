@@ -108,7 +108,14 @@ fn wasm_module(root: &Path) -> Result<PathBuf, String> {
     let mut command = Command::new(cargo);
     command
         .current_dir(root)
-        .args(["build", "--locked", "-p", "shadelab-wasm", "--profile", "wasm"])
+        .args([
+            "build",
+            "--locked",
+            "-p",
+            "shadelab-wasm",
+            "--profile",
+            "wasm",
+        ])
         .args(["--target", TARGET])
         .arg("--target-dir")
         .arg(&target_dir);
@@ -121,7 +128,11 @@ fn wasm_module(root: &Path) -> Result<PathBuf, String> {
         if (key.starts_with("CARGO_") && !keep)
             || matches!(
                 &*key,
-                "RUSTFLAGS" | "RUSTDOCFLAGS" | "RUSTC" | "RUSTC_WRAPPER" | "RUSTC_WORKSPACE_WRAPPER"
+                "RUSTFLAGS"
+                    | "RUSTDOCFLAGS"
+                    | "RUSTC"
+                    | "RUSTC_WRAPPER"
+                    | "RUSTC_WORKSPACE_WRAPPER"
             )
         {
             command.env_remove(&*key);

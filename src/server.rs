@@ -308,8 +308,14 @@ mod tests {
 
     #[test]
     fn content_types_follow_the_extension() {
-        assert_eq!(site().lookup("/js/main.js").unwrap().1, "text/javascript; charset=utf-8");
-        assert_eq!(site().lookup("/shadelab.wasm").unwrap().1, "application/wasm");
+        assert_eq!(
+            site().lookup("/js/main.js").unwrap().1,
+            "text/javascript; charset=utf-8"
+        );
+        assert_eq!(
+            site().lookup("/shadelab.wasm").unwrap().1,
+            "application/wasm"
+        );
         assert_eq!(content_type("a.css"), "text/css; charset=utf-8");
         assert_eq!(content_type("a.json"), "application/json");
         assert_eq!(content_type("noextension"), "application/octet-stream");
@@ -318,16 +324,34 @@ mod tests {
     #[test]
     fn requests_are_answered_by_method() {
         let (r, head_only) = answer(&site(), b"GET /js/main.js HTTP/1.1\r\nHost: x\r\n\r\n");
-        assert_eq!((r.status, r.body, head_only), (200, &b"export {}"[..], false));
+        assert_eq!(
+            (r.status, r.body, head_only),
+            (200, &b"export {}"[..], false)
+        );
         let (r, head_only) = answer(&site(), b"HEAD / HTTP/1.1\r\n\r\n");
         assert_eq!((r.status, head_only), (200, true));
         let (r, _) = answer(&site(), b"POST / HTTP/1.1\r\n\r\n");
         assert_eq!(r.status, 405);
         assert_eq!(r.headers, vec![("Allow", "GET, HEAD")]);
-        for bad in [&b"GET /\r\n\r\n"[..], b"GET / HTTP/1.1 extra\r\n\r\n", b"GET / SPDY/3\r\n\r\n", b"\r\n\r\n"] {
-            assert_eq!(answer(&site(), bad).0.status, 400, "{:?}", String::from_utf8_lossy(bad));
+        for bad in [
+            &b"GET /\r\n\r\n"[..],
+            b"GET / HTTP/1.1 extra\r\n\r\n",
+            b"GET / SPDY/3\r\n\r\n",
+            b"\r\n\r\n",
+        ] {
+            assert_eq!(
+                answer(&site(), bad).0.status,
+                400,
+                "{:?}",
+                String::from_utf8_lossy(bad)
+            );
         }
-        assert_eq!(answer(&site(), b"GET /../etc/passwd HTTP/1.1\r\n\r\n").0.status, 404);
+        assert_eq!(
+            answer(&site(), b"GET /../etc/passwd HTTP/1.1\r\n\r\n")
+                .0
+                .status,
+            404
+        );
     }
 
     #[test]

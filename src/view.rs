@@ -1,6 +1,7 @@
 //! `shadelab view`: serves the viewer on this machine, or writes it out as
 //! a static site.
 
+use std::io::Write;
 use std::net::{IpAddr, SocketAddr};
 use std::path::Path;
 
@@ -40,19 +41,25 @@ pub fn view(request: &ViewRequest<'_>) -> anyhow::Result<()> {
         anyhow::anyhow!("cannot listen on {addr}: {e}{hint}")
     })?;
     let url = page_url(server.addr());
-    println!("shadelab viewer: {url}");
+    say(&format!("shadelab viewer: {url}"));
     if !request.host.is_loopback() {
-        println!(
+        say(&format!(
             "note: listening on {}, so other machines that can reach this one can open it",
             request.host
-        );
+        ));
     }
-    println!("Press Ctrl+C to stop.");
+    say("Press Ctrl+C to stop.");
     if request.open {
         open_browser(&url);
     }
     server.run(site);
     Ok(())
+}
+
+/// Prints a line; a server whose output has gone away (a closed pipe) keeps serving.
+fn say(line: &str) {
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(out, "{line}").and_then(|()| out.flush());
 }
 
 /// The page's address; an unspecified host (0.0.0.0, ::) is shown as loopback.
@@ -73,15 +80,15 @@ fn open_browser(url: &str) {
         || std::env::var_os("DISPLAY").is_some()
         || std::env::var_os("WAYLAND_DISPLAY").is_some();
     if !has_display || open::that_detached(url).is_err() {
-        println!("Open {url} in a browser.");
+        say(&format!("Open {url} in a browser."));
     }
 }
 
 /// Writes the site's files into `dir`, which must be new or empty.
 fn export(site: &Site, dir: &Path) -> anyhow::Result<()> {
     if dir.exists() {
-        let mut entries = std::fs::read_dir(dir)
-            .with_context(|| format!("cannot read {}", dir.display()))?;
+        let mut entries =
+            std::fs::read_dir(dir).with_context(|| format!("cannot read {}", dir.display()))?;
         if entries.next().is_some() {
             bail!(
                 "{} is not empty; export into a new or empty directory (nothing is overwritten)",

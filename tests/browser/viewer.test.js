@@ -221,10 +221,11 @@ test('on a low-poly sphere flat shows facets, Phong a highlight that Gouraud lac
   // Phong's highlight is a spot, smaller than the facet flat shading lights up whole.
   assert.ok(s.phong.highlight < s.flat.highlight || s.flat.highlight === 0, JSON.stringify(s));
   await page.screenshot({ path: path.join(ARTIFACTS, 'sphere.png') });
-  // With Gouraud's specular on, the highlight appears there too, but smeared and dimmer than Phong's.
+  // With Gouraud's specular on, the highlight still falls inside a polygon,
+  // between vertices that all miss it: the textbook failure of Gouraud shading.
   await update(page, 's.gouraudSpecular = true');
   const g = await statistics(page);
-  assert.ok(g.gouraud.maxGreen > 72 && g.gouraud.maxGreen < g.phong.maxGreen, JSON.stringify(g.gouraud));
+  assert.ok(g.gouraud.maxGreen < 150 && g.phong.maxGreen >= 240, JSON.stringify(g));
   assert.deepEqual(problems, []);
   await page.close();
 });

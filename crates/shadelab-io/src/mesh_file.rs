@@ -59,7 +59,10 @@ pub fn parse_mesh(bytes: &[u8], name: &str) -> Result<Mesh, LoadError> {
             let text = std::str::from_utf8(bytes).map_err(|e| {
                 invalid(
                     name,
-                    format!("not UTF-8 text (invalid byte at offset {})", e.valid_up_to()),
+                    format!(
+                        "not UTF-8 text (invalid byte at offset {})",
+                        e.valid_up_to()
+                    ),
                 )
             })?;
             crate::parse_obj(text, name)

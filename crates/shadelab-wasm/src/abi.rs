@@ -54,8 +54,9 @@ impl Instance {
         // say so rather than hand back half a JSON text.
         if written.is_err() {
             self.result.clear();
-            self.result
-                .extend_from_slice(br#"{"error":"internal error: the answer could not be encoded"}"#);
+            self.result.extend_from_slice(
+                br#"{"error":"internal error: the answer could not be encoded"}"#,
+            );
             return FAILED;
         }
         status

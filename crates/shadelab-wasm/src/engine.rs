@@ -121,7 +121,8 @@ struct UserFile {
     mesh: Mesh,
 }
 
-/// Renders panels from scene text; see the [module docs](self).
+/// Renders panels from scene text, keeping the prepared model between frames
+/// while the scene's `[model]` section (and whether it gives a camera) stays the same.
 #[derive(Debug, Default)]
 pub struct Engine {
     renderer: Renderer,
