@@ -2,7 +2,7 @@
 // shadelab's WebAssembly in its own worker from the same scene file, and the
 // controls that change that scene. Everything the page knows is in `state`;
 // every change re-renders the three panels and rewrites the link.
-import { t, translateDocument } from './i18n.js';
+import { t, translateDocument, formatCount } from './i18n.js';
 import { Panel } from './panels.js';
 import { Controls } from './controls.js';
 import { attachInteraction } from './interaction.js';
@@ -33,6 +33,15 @@ function showMessage(text, kind = 'error') {
 
 function clearMessage() {
   $('#message').hidden = true;
+}
+
+function summaryText(summary) {
+  return t('model.summary', {
+    name: summary.name,
+    vertices: formatCount(summary.vertices),
+    polygons: formatCount(summary.polygons),
+    triangles: formatCount(summary.triangles),
+  });
 }
 
 function setStatus(text) {
@@ -112,7 +121,7 @@ async function openFile(file) {
   state.detail = null;
   state.crease = null;
   if (state.normals === 'file' && !userFile.has_normals) state.normals = 'auto';
-  setStatus(t('model.summary', userFile));
+  setStatus(summaryText(userFile));
   changed();
 }
 
@@ -165,7 +174,7 @@ function buildControls() {
       state.detail = null;
       state.crease = null;
       if (state.normals === 'file' && !(userFile && v === userFile.name && userFile.has_normals)) state.normals = 'auto';
-      setStatus(userFile && v === userFile.name ? t('model.summary', userFile) : '');
+      setStatus(userFile && v === userFile.name ? summaryText(userFile) : '');
     },
   });
   c.range(model, {
