@@ -385,6 +385,19 @@ test('a bad file shows a clear error and the previous model stays', async () => 
   await page.close();
 });
 
+test('a scene the renderer refuses shows its message and the last pictures stay', async () => {
+  const { page, problems } = await openViewer();
+  const before = await digests(page);
+  await update(page, 's.material.shininess = -1');
+  await page.locator('#message').waitFor({ state: 'visible' });
+  assert.match(await page.locator('#message .message-text').textContent(), /material\.shininess: must be a finite number ≥ 0, got -1/);
+  assert.deepEqual(await digests(page), before);
+  await update(page, 's.material.shininess = 10');
+  assert.ok(await page.locator('#message').isHidden(), 'the message goes with the next good frame');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('a link with the state reproduces the view', async () => {
   const { page, problems } = await openViewer();
   await update(page, `

@@ -83,11 +83,10 @@ function panelError(panel, error) {
 }
 
 function panelFrame() {
-  if (lastError && panels.every((p) => !p.busy || p.pending === null)) {
-    // A good frame after an error: the message has served its purpose.
-    lastError = '';
-    clearMessage();
-  }
+  // A good frame after a failed one: the render error has served its purpose
+  // (any other message stays until dismissed).
+  if (lastError && !$('#message').hidden && $('#message .message-text').textContent === lastError) clearMessage();
+  lastError = '';
 }
 
 // ---- the user's file ----
