@@ -322,6 +322,18 @@ mod tests {
     }
 
     #[test]
+    fn a_missing_module_is_explained() {
+        let text = MissingWasm("`rustup target add wasm32-unknown-unknown` failed\n").to_string();
+        assert!(
+            text.starts_with("this shadelab was built without the viewer's WebAssembly: `rustup")
+        );
+        assert!(
+            text.contains("then build again (`cargo run --release -- view`)"),
+            "{text}"
+        );
+    }
+
+    #[test]
     fn requests_are_answered_by_method() {
         let (r, head_only) = answer(&site(), b"GET /js/main.js HTTP/1.1\r\nHost: x\r\n\r\n");
         assert_eq!(
