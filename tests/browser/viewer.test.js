@@ -289,6 +289,11 @@ test('moving a slider changes all three pictures', async () => {
   for (const m of METHODS) assert.notEqual(after[m], mid[m], `${m} changed with the light's intensity`);
   assert.equal(await page.evaluate(() => window.shadelab.state.light.intensity), 0.8);
   assert.match(await page.evaluate(() => window.shadelab.sceneToml('phong')), /\[\[lights\]\]\n(?:.*\n)*?intensity = 0\.8\n/);
+  // Reset all brings back the defaults and their pictures.
+  await page.getByRole('button', { name: 'Reset all' }).click();
+  await settle(page);
+  assert.deepEqual(await digests(page), before);
+  assert.equal(await page.evaluate(() => location.hash), '');
   assert.deepEqual(problems, []);
   await page.close();
 });
@@ -532,6 +537,38 @@ test('frame times: the default scene re-renders each panel within 16 ms', async 
   }
   assert.deepEqual(problems, []);
   await page.close();
+});
+
+test('the exported static site works from another web server', async () => {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'shadelab-site-'));
+  const site = path.join(dir, 'site');
+  execFileSync(BIN, ['view', '--export', site], { stdio: 'pipe' });
+  const types = { html: 'text/html', js: 'text/javascript', css: 'text/css', wasm: 'application/wasm', svg: 'image/svg+xml' };
+  const { createServer } = await import('node:http');
+  const other = createServer((req, res) => {
+    const name = decodeURIComponent(new URL(req.url, 'http://x').pathname).replace(/^\/$/, '/index.html');
+    const file = path.join(site, path.normalize(name));
+    if (!file.startsWith(site) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) {
+      res.writeHead(404).end();
+      return;
+    }
+    res.writeHead(200, { 'Content-Type': types[path.extname(file).slice(1)] ?? 'application/octet-stream' });
+    res.end(fs.readFileSync(file));
+  });
+  await new Promise((resolve) => other.listen(0, '127.0.0.1', resolve));
+  const page = await context.newPage();
+  const problems = [];
+  page.on('console', (m) => m.type() === 'error' && problems.push(m.text()));
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(`http://127.0.0.1:${other.address().port}/#model=cube&yaw=30&pitch=20`);
+  await page.waitForFunction(() => window.shadelab?.panels.every((p) => p.frames > 0), null, { timeout: 60000 });
+  await settle(page);
+  const s = await statistics(page);
+  for (const m of METHODS) assert.ok(s[m].covered > 10000, `${m}: ${JSON.stringify(s[m])}`);
+  assert.deepEqual(problems, []);
+  await page.close();
+  other.close();
+  fs.rmSync(dir, { recursive: true, force: true });
 });
 
 test('the layout fits a laptop screen and a projector', async () => {
