@@ -63,6 +63,7 @@ export default {
   'camera.pitch': 'Pitch (°)',
   'camera.zoom': 'Zoom',
   'camera.reset': 'Reset camera',
+  'camera.help': 'On a panel: drag to orbit, Shift+drag to move the light, wheel or pinch to zoom. Focused panel: arrows orbit, Shift+arrows move the light, + and − zoom, 0 resets.',
   'camera.drag': 'Dragging a panel moves',
   'camera.drag.camera': 'the camera',
   'camera.drag.light': 'the light',

@@ -234,6 +234,7 @@ function buildControls() {
     get: () => dragMode, set: (v) => (dragMode = v),
   });
   c.button(camera, { label: t('camera.reset'), onclick: resetCamera });
+  c.note(camera, () => t('camera.help'));
 
   const shading = c.group('group.shading', 'shading');
   c.select(shading, {
