@@ -582,6 +582,16 @@ test('the layout fits a laptop screen and a projector', async () => {
       assert.ok(boxes.every((b) => Math.abs(b.top - boxes[0].top) < 1 && b.bottom <= viewport.height && b.width >= 300), `${name}: ${JSON.stringify(boxes)}`);
     }
     await page.screenshot({ path: path.join(ARTIFACTS, `${name}.png`) });
+    if (name.startsWith('projector')) {
+      // Presenting hides the controls; the panels keep (or grow to) the screen's size.
+      await page.getByRole('button', { name: 'Present' }).click();
+      assert.ok(await page.locator('#controls').isHidden());
+      const big = await page.locator('.panel canvas').evaluateAll((cs) => cs.map((c) => c.getBoundingClientRect().toJSON()));
+      assert.ok(big.every((b, i) => b.width >= boxes[i].width - 1 && b.bottom <= viewport.height), JSON.stringify(big));
+      await page.screenshot({ path: path.join(ARTIFACTS, `${name}-presenting.png`) });
+      await page.getByRole('button', { name: 'Present' }).click();
+      assert.ok(await page.locator('#controls').isVisible());
+    }
     assert.deepEqual(problems, []);
     await page.close();
   }

@@ -102,6 +102,8 @@ export default {
   'view.link.copied': 'The link to this view is in the address bar and on the clipboard.',
   'view.link.shown': 'The link to this view is in the address bar.',
   'view.reset': 'Reset all',
+  'view.present': 'Present',
+  'view.present.title': 'Show only the three panels, as large as the screen allows (again to bring the controls back)',
 
   'error.title': 'Error',
   'error.dismiss': 'Dismiss',

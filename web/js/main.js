@@ -338,6 +338,10 @@ async function start() {
     clearMessage();
     changed();
   });
+  $('#present').addEventListener('click', (e) => {
+    const on = document.body.classList.toggle('presenting');
+    e.currentTarget.setAttribute('aria-pressed', String(on));
+  });
   window.addEventListener('hashchange', () => {
     if (location.hash === toHash(state)) return;
     const keep = state;

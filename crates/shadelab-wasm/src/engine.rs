@@ -126,9 +126,13 @@ struct UserFile {
 #[derive(Debug, Default)]
 pub struct Engine {
     renderer: Renderer,
+    /// The user's file, and a count that changes with each file loaded.
     file: Option<UserFile>,
     file_generation: u64,
+    /// The scene of the last frame, with the key of its model: requests about
+    /// that frame (a pixel's lighting terms, say) can use it as drawn.
     prepared: Option<(ModelKey, Scene)>,
+    /// The last frame, its options and its pixels as RGBA.
     image: Option<Image>,
     options: Option<RenderOptions>,
     rgba: Vec<u8>,
