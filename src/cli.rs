@@ -41,6 +41,8 @@ pub enum Command {
     Quad(QuadArgs),
     /// Render time and lighting evaluations (per polygon, vertex, pixel) of each method.
     Cost(CostArgs),
+    /// Serve the interactive viewer (flat | Gouraud | Phong, live) in the browser.
+    View(ViewArgs),
 }
 
 /// `--lang`
@@ -206,6 +208,23 @@ fn parse_line(s: &str) -> Result<[f64; 4], String> {
         return Err(format!("coordinates must be finite, got {s:?}"));
     }
     Ok(v)
+}
+
+/// `shadelab view`
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// Address to listen on; the default serves this machine only.
+    #[arg(long, default_value = "127.0.0.1")]
+    pub host: std::net::IpAddr,
+    /// Port to listen on (0: any free port).
+    #[arg(long, default_value_t = 8080)]
+    pub port: u16,
+    /// Do not open a browser.
+    #[arg(long)]
+    pub no_open: bool,
+    /// Write the viewer as static files into this new or empty directory instead of serving it.
+    #[arg(long, value_name = "DIR")]
+    pub export: Option<PathBuf>,
 }
 
 /// `shadelab render`

@@ -14,6 +14,8 @@ mod label;
 mod plot;
 mod profile;
 mod quad;
+mod server;
+mod view;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -154,6 +156,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
             };
             list().map_err(output_error)
         }
+        Command::View(args) => view::view(&view::ViewRequest {
+            host: args.host,
+            port: args.port,
+            open: !args.no_open,
+            export: args.export.as_deref(),
+        })
+        .map_err(output_error),
     }
 }
 

@@ -10,14 +10,14 @@ mod scene;
 mod stl;
 
 pub use gltf::{load_gltf, parse_gltf};
-pub use mesh_file::{load_mesh, MAX_MESH_BYTES, MESH_EXTENSIONS};
+pub use mesh_file::{load_mesh, parse_mesh, MAX_MESH_BYTES, MESH_EXTENSIONS};
 pub use obj::{load_obj, parse_obj, MAX_OBJ_BYTES};
 pub use ply::{load_ply, parse_ply};
 pub use png::{encode_png, read_png, write_png};
 pub use scene::{
     model_path, AmbientSection, CameraSection, InterpolationName, LightKindName, LightSection,
     MaterialSection, ModelSection, NormalsChoice, PolygonsName, RasterizerName, RenderSection,
-    SceneError, SceneFile, ShadingName, SpecularName,
+    SceneError, SceneFile, ShadingName, SpecularName, MAX_ZOOM, MIN_ZOOM,
 };
 pub use stl::{load_stl, parse_stl};
 

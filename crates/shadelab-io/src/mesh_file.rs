@@ -37,18 +37,55 @@ pub fn load_mesh(path: &Path) -> Result<Mesh, LoadError> {
         Some("stl") => crate::load_stl(path),
         Some("ply") => crate::load_ply(path),
         Some("gltf" | "glb") => crate::load_gltf(path),
-        _ => Err(LoadError::Invalid {
-            path: path.display().to_string(),
-            message: format!(
-                "unknown mesh format: the extension must be one of {}",
-                MESH_EXTENSIONS
-                    .iter()
-                    .map(|e| format!(".{e}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        }),
+        _ => Err(unknown_format(&path.display().to_string())),
     }
+}
+
+/// Parses a mesh file's bytes, choosing the format by the extension of
+/// `name` (case-insensitive), as [`load_mesh`] does: for a file that did not
+/// come from disk (the viewer's uploads). A glTF file must be self-contained
+/// (a `.glb`, or buffers embedded as data URIs).
+///
+/// # Errors
+/// As [`load_mesh`]; an OBJ file that is not UTF-8 text is
+/// [`LoadError::Invalid`].
+pub fn parse_mesh(bytes: &[u8], name: &str) -> Result<Mesh, LoadError> {
+    let extension = Path::new(name)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some("obj") => {
+            let text = std::str::from_utf8(bytes).map_err(|e| {
+                invalid(
+                    name,
+                    format!(
+                        "not UTF-8 text (invalid byte at offset {})",
+                        e.valid_up_to()
+                    ),
+                )
+            })?;
+            crate::parse_obj(text, name)
+        }
+        Some("stl") => crate::parse_stl(bytes, name),
+        Some("ply") => crate::parse_ply(bytes, name),
+        Some("gltf" | "glb") => crate::parse_gltf(bytes, name, None),
+        _ => Err(unknown_format(name)),
+    }
+}
+
+fn unknown_format(name: &str) -> LoadError {
+    invalid(
+        name,
+        format!(
+            "unknown mesh format: the extension must be one of {}",
+            MESH_EXTENSIONS
+                .iter()
+                .map(|e| format!(".{e}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    )
 }
 
 /// Reads a whole file of at most `limit` bytes.

@@ -11,9 +11,9 @@ use glam::Vec3;
 use serde::Deserialize;
 use shadelab_core::raster::scanline::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
 use shadelab_core::{
-    builtin_model, builtin_model_info, vertex_normals, Camera, Interpolation, Light, LightKind,
-    Material, Mesh, NormalWeighting, Palette, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8,
-    Scene, Shading, Specular, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
+    builtin_model, builtin_model_info, vertex_normals, Camera, CornerNormals, Interpolation, Light,
+    LightKind, Material, Mesh, NormalWeighting, Palette, Polygons, Rasterizer, RenderOptions, Rgb,
+    Rgb8, Scene, Shading, Specular, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
 };
 
 use crate::{load_mesh, LoadError};
@@ -191,7 +191,15 @@ pub struct RenderSection {
     pub yaw: Option<f32>,
     /// Degrees to orbit the camera towards its up axis; default 0.
     pub pitch: Option<f32>,
+    /// Magnification, [`MIN_ZOOM`]..=[`MAX_ZOOM`]: the field of view narrows
+    /// to `2·atan(tan(fov_y/2) / zoom)`; default 1.
+    pub zoom: Option<f32>,
 }
+
+/// Smallest `render.zoom`.
+pub const MIN_ZOOM: f32 = 0.1;
+/// Largest `render.zoom`.
+pub const MAX_ZOOM: f32 = 100.0;
 
 /// A shading method's name in a file.
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
@@ -341,9 +349,62 @@ impl SceneFile {
     /// Checks every value, loads the model (a relative path is taken from
     /// `base_dir`) and builds what the renderer needs.
     ///
+    /// The same as [`SceneFile::render_options`], [`SceneFile::model_mesh`]
+    /// reading mesh files from disk, [`SceneFile::prepare_model`] and
+    /// [`SceneFile::build_scene`] in turn; a caller that keeps the model
+    /// between frames (the viewer) calls those itself.
+    ///
     /// # Errors
     /// [`SceneError::Value`] naming the key, or [`SceneError::Model`].
     pub fn resolve(&self, base_dir: &Path) -> Result<(Scene, RenderOptions), SceneError> {
+        let options = self.render_options()?;
+        let (mesh, default_crease) = self.model_mesh(|source| {
+            let path = model_path(source, base_dir);
+            if !path.exists() && !source.contains('.') && !source.contains('/') {
+                return Err(value_error(
+                    "model.source",
+                    format!(
+                        "{source:?} is neither a built-in model ({}) nor an existing file",
+                        builtin_names()
+                    ),
+                ));
+            }
+            Ok(load_mesh(&path)?)
+        })?;
+        let (mesh, normals) = self.prepare_model(mesh, default_crease)?;
+        let scene = self.build_scene(mesh, normals, &options)?;
+        Ok((scene, options))
+    }
+
+    /// The scene: `mesh` and `normals` as [`SceneFile::prepare_model`] made
+    /// them, with the camera, lights and material of this file
+    /// ([`SceneFile::update_scene`]).
+    ///
+    /// # Errors
+    /// As [`SceneFile::update_scene`].
+    pub fn build_scene(
+        &self,
+        mesh: Mesh,
+        normals: CornerNormals,
+        options: &RenderOptions,
+    ) -> Result<Scene, SceneError> {
+        let mut scene = Scene {
+            mesh,
+            normals,
+            camera: Camera::framing_sphere(Vec3::ZERO, 1.0, 45.0, 1.0),
+            ambient: Rgb::default(),
+            lights: Vec::new(),
+            material: Material::default(),
+        };
+        self.update_scene(&mut scene, options)?;
+        Ok(scene)
+    }
+
+    /// The `[render]` section, checked: size, method and options.
+    ///
+    /// # Errors
+    /// [`SceneError::Value`] naming the key.
+    pub fn render_options(&self) -> Result<RenderOptions, SceneError> {
         let r = &self.render;
         let width = r.width.unwrap_or(800);
         let height = r.height.unwrap_or(600);
@@ -441,8 +502,46 @@ impl SceneFile {
                 _ => options.rasterizer = Rasterizer::Scanline,
             }
         }
+        Ok(options)
+    }
 
-        let (mesh, default_crease) = self.load_model(base_dir)?;
+    /// The model's mesh as given (not yet normalised) and its default crease
+    /// angle: a built-in model with its detail, or `file(source)` for any
+    /// other source (the command line reads the file from disk; the viewer
+    /// looks up a file the user gave it).
+    ///
+    /// # Errors
+    /// [`SceneError::Value`] for a bad detail, or what `file` returns.
+    pub fn model_mesh(
+        &self,
+        file: impl FnOnce(&str) -> Result<Mesh, SceneError>,
+    ) -> Result<(Mesh, Option<f32>), SceneError> {
+        let source = self.model.source.as_deref().unwrap_or("teapot");
+        if let Some(info) = builtin_model_info(source) {
+            let mesh = builtin_model(source, self.model.detail)
+                .map_err(|e| value_error("model.detail", e.to_string()))?;
+            return Ok((mesh, info.default_crease_degrees));
+        }
+        if self.model.detail.is_some() {
+            return Err(value_error(
+                "model.detail",
+                format!("only built-in models have a detail; {source:?} is a file"),
+            ));
+        }
+        Ok((file(source)?, None))
+    }
+
+    /// The mesh ready to draw and its corner normals, from the `[model]`
+    /// section (normals, crease angle): the mesh is normalised (centred, unit
+    /// bounding sphere) when the scene gives no camera.
+    ///
+    /// # Errors
+    /// [`SceneError::Value`] naming `model.crease_angle` or `model.normals`.
+    pub fn prepare_model(
+        &self,
+        mesh: Mesh,
+        default_crease: Option<f32>,
+    ) -> Result<(Mesh, CornerNormals), SceneError> {
         let crease = match self.model.crease_angle {
             Some(a) if !(a.is_finite() && (0.0..=180.0).contains(&a)) => {
                 return Err(value_error(
@@ -468,9 +567,28 @@ impl SceneFile {
             (NormalsChoice::Area, _) => vertex_normals(&mesh, NormalWeighting::Area, crease),
             (NormalsChoice::Angle, _) => vertex_normals(&mesh, NormalWeighting::Angle, crease),
         };
+        let mesh = if self.camera.is_some() {
+            mesh
+        } else {
+            mesh.normalized()
+        };
+        Ok((mesh, normals))
+    }
 
-        let aspect = width as f32 / height as f32;
-        let (mesh, camera) = match &self.camera {
+    /// Sets `scene`'s camera, ambient light, lights and material from this
+    /// file, for an image of `options`' size; the mesh and normals are left
+    /// alone. On error `scene` is unchanged.
+    ///
+    /// # Errors
+    /// [`SceneError::Value`] naming the key.
+    pub fn update_scene(
+        &self,
+        scene: &mut Scene,
+        options: &RenderOptions,
+    ) -> Result<(), SceneError> {
+        let r = &self.render;
+        let aspect = options.width as f32 / options.height as f32;
+        let camera = match &self.camera {
             Some(c) => {
                 let camera = Camera {
                     eye: vec3("camera.eye", c.eye)?,
@@ -483,16 +601,23 @@ impl SceneFile {
                 camera
                     .validate()
                     .map_err(|e| value_error("camera", e.to_string()))?;
-                (mesh, camera)
+                camera
             }
-            None => (
-                mesh.normalized(),
-                Camera::framing_sphere(Vec3::ZERO, 1.0, 45.0, aspect),
-            ),
+            None => Camera::framing_sphere(Vec3::ZERO, 1.0, 45.0, aspect),
         };
         let yaw = finite("render.yaw", r.yaw.unwrap_or(0.0))?;
         let pitch = finite("render.pitch", r.pitch.unwrap_or(0.0))?;
-        let camera = camera.orbit(yaw, pitch);
+        let mut camera = camera.orbit(yaw, pitch);
+        if let Some(zoom) = r.zoom {
+            if !(zoom.is_finite() && (MIN_ZOOM..=MAX_ZOOM).contains(&zoom)) {
+                return Err(value_error(
+                    "render.zoom",
+                    format!("must be {MIN_ZOOM}..={MAX_ZOOM}, got {zoom}"),
+                ));
+            }
+            let half = (camera.fov_y_degrees.to_radians() * 0.5).tan() / zoom;
+            camera.fov_y_degrees = (2.0 * half.atan()).to_degrees();
+        }
 
         let a = &self.ambient;
         let ambient_intensity = non_negative("ambient.intensity", a.intensity.unwrap_or(0.2))?;
@@ -525,44 +650,11 @@ impl SceneFile {
                 format!("must be at most 10000, got {}", material.shininess),
             ));
         }
-        Ok((
-            Scene {
-                mesh,
-                normals,
-                camera,
-                ambient,
-                lights,
-                material,
-            },
-            options,
-        ))
-    }
-
-    /// The model's mesh and its default crease angle.
-    fn load_model(&self, base_dir: &Path) -> Result<(Mesh, Option<f32>), SceneError> {
-        let source = self.model.source.as_deref().unwrap_or("teapot");
-        if let Some(info) = builtin_model_info(source) {
-            let mesh = builtin_model(source, self.model.detail)
-                .map_err(|e| value_error("model.detail", e.to_string()))?;
-            return Ok((mesh, info.default_crease_degrees));
-        }
-        if self.model.detail.is_some() {
-            return Err(value_error(
-                "model.detail",
-                format!("only built-in models have a detail; {source:?} is a file"),
-            ));
-        }
-        let path = model_path(source, base_dir);
-        if !path.exists() && !source.contains('.') && !source.contains('/') {
-            return Err(value_error(
-                "model.source",
-                format!(
-                    "{source:?} is neither a built-in model ({}) nor an existing file",
-                    builtin_names()
-                ),
-            ));
-        }
-        Ok((load_mesh(&path)?, None))
+        scene.camera = camera;
+        scene.ambient = ambient;
+        scene.lights = lights;
+        scene.material = material;
+        Ok(())
     }
 }
 

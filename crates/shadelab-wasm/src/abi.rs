@@ -1,0 +1,153 @@
+//! The exports JavaScript calls: plain `extern "C"` functions over one
+//! [`Engine`] per WebAssembly instance (one instance per worker).
+//!
+//! Bytes cross the boundary only through buffers that Rust owns: JavaScript
+//! asks [`shadelab_input`] for an input buffer of the size it needs, copies
+//! its bytes there, then makes a request; it reads the answer from the
+//! result and pixel buffers whose addresses and lengths the other exports
+//! give. A buffer's address is valid until the next call, which may grow the
+//! memory, so JavaScript makes a new view of `memory.buffer` after each call.
+//!
+//! Every request returns [`OK`] or [`FAILED`]; the result buffer then holds
+//! the answer's JSON, or `{"error": "..."}`.
+
+use std::cell::RefCell;
+
+use serde::Serialize;
+
+use crate::engine::{Engine, EngineError};
+
+/// A request succeeded.
+pub const OK: u32 = 0;
+/// A request failed; the result is `{"error": "..."}`.
+pub const FAILED: u32 = 1;
+
+/// One instance's state.
+#[derive(Default)]
+struct Instance {
+    engine: Engine,
+    input: Vec<u8>,
+    result: Vec<u8>,
+}
+
+thread_local! {
+    static INSTANCE: RefCell<Instance> = RefCell::new(Instance::default());
+}
+
+#[derive(Serialize)]
+struct ErrorJson<'a> {
+    error: &'a str,
+}
+
+impl Instance {
+    /// Stores `answer` as the result and returns the status.
+    fn answer<T: Serialize>(&mut self, answer: Result<T, EngineError>) -> u32 {
+        self.result.clear();
+        let (status, written) = match &answer {
+            Ok(value) => (OK, serde_json::to_writer(&mut self.result, value)),
+            Err(e) => (
+                FAILED,
+                serde_json::to_writer(&mut self.result, &ErrorJson { error: &e.0 }),
+            ),
+        };
+        // Serializing these plain structs into a Vec cannot fail; should it,
+        // say so rather than hand back half a JSON text.
+        if written.is_err() {
+            self.result.clear();
+            self.result.extend_from_slice(
+                br#"{"error":"internal error: the answer could not be encoded"}"#,
+            );
+            return FAILED;
+        }
+        status
+    }
+}
+
+fn with<R>(f: impl FnOnce(&mut Instance) -> R) -> R {
+    INSTANCE.with_borrow_mut(f)
+}
+
+/// Makes the input buffer `len` bytes long (zeroed) and returns its address,
+/// for JavaScript to fill before the next request.
+#[no_mangle]
+pub extern "C" fn shadelab_input(len: usize) -> *mut u8 {
+    with(|i| {
+        i.input.clear();
+        i.input.resize(len, 0);
+        i.input.as_mut_ptr()
+    })
+}
+
+/// The built-in models ([`Engine::models`]) as JSON.
+#[no_mangle]
+pub extern "C" fn shadelab_models() -> u32 {
+    with(|i| i.answer(Ok(Engine::models())))
+}
+
+/// Loads the user's file: the input buffer holds its name (`name_len` bytes
+/// of UTF-8), then its bytes ([`Engine::load_file`]).
+#[no_mangle]
+pub extern "C" fn shadelab_load_file(name_len: usize) -> u32 {
+    with(|i| {
+        let input = std::mem::take(&mut i.input);
+        let answer = match input.split_at_checked(name_len) {
+            Some((name, bytes)) => match std::str::from_utf8(name) {
+                Ok(name) => i.engine.load_file(name, bytes),
+                Err(_) => Err(EngineError("the file name is not UTF-8".into())),
+            },
+            None => Err(EngineError("the file name is longer than the input".into())),
+        };
+        i.input = input;
+        i.answer(answer)
+    })
+}
+
+/// Renders the scene whose TOML text is in the input buffer
+/// ([`Engine::render`]); the pixels are then at [`shadelab_pixels`].
+#[no_mangle]
+pub extern "C" fn shadelab_render() -> u32 {
+    with(|i| {
+        let answer = match std::str::from_utf8(&i.input) {
+            Ok(text) => i.engine.render(text),
+            Err(_) => Err(EngineError("the scene text is not UTF-8".into())),
+        };
+        i.answer(answer)
+    })
+}
+
+/// Address of the last request's result (JSON).
+#[no_mangle]
+pub extern "C" fn shadelab_result() -> *const u8 {
+    with(|i| i.result.as_ptr())
+}
+
+/// Length of the last request's result, bytes.
+#[no_mangle]
+pub extern "C" fn shadelab_result_len() -> usize {
+    with(|i| i.result.len())
+}
+
+/// Address of the last frame's RGBA pixels.
+#[no_mangle]
+pub extern "C" fn shadelab_pixels() -> *const u8 {
+    with(|i| i.engine.rgba().as_ptr())
+}
+
+/// Length of the last frame's RGBA pixels, bytes (4 per pixel).
+#[no_mangle]
+pub extern "C" fn shadelab_pixels_len() -> usize {
+    with(|i| i.engine.rgba().len())
+}
+
+/// The result of the last request as text, for native tests.
+pub fn result_text() -> String {
+    with(|i| String::from_utf8_lossy(&i.result).into_owned())
+}
+
+/// Copies `bytes` into the input buffer, as JavaScript does, for native tests.
+pub fn set_input(bytes: &[u8]) {
+    with(|i| {
+        i.input.clear();
+        i.input.extend_from_slice(bytes);
+    })
+}

@@ -1,0 +1,269 @@
+//! The engine behind one viewer panel: the user's file, the prepared model
+//! kept from frame to frame, the renderer's buffers and the last frame.
+//!
+//! A frame is asked for with the whole scene as TOML text, every time. Only
+//! the `[model]` section (with whether a `[camera]` is given, which decides
+//! whether the mesh is normalised) determines the mesh and its normals, so
+//! those are prepared again only when that part changes; the camera, lights,
+//! material and options are read from the text on every frame through the
+//! same [`SceneFile`] functions that `shadelab render` uses.
+
+use serde::Serialize;
+use shadelab_core::{Image, Mesh, RenderOptions, RenderStats, Renderer, Rgb8, Scene};
+use shadelab_io::{parse_mesh, ModelSection, SceneError, SceneFile};
+
+/// Largest file the viewer reads, in bytes (128 MiB). Each panel's worker
+/// keeps its own copy of the mesh in a 32-bit address space; the command
+/// line reads files up to [`shadelab_io::MAX_MESH_BYTES`].
+pub const MAX_FILE_BYTES: usize = 128 << 20;
+
+/// Why a request failed: the text shown to the user.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct EngineError(pub String);
+
+impl std::fmt::Display for EngineError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for EngineError {}
+
+impl From<SceneError> for EngineError {
+    fn from(e: SceneError) -> EngineError {
+        EngineError(e.to_string())
+    }
+}
+
+/// One built-in model, as the page lists it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModelEntry {
+    /// The name a scene gives as `model.source`.
+    pub name: &'static str,
+    /// One line about it.
+    pub description: &'static str,
+    /// What its detail means.
+    pub detail_meaning: &'static str,
+    /// Detail used when none is given.
+    pub default_detail: u32,
+    /// Smallest detail.
+    pub detail_min: u32,
+    /// Largest detail.
+    pub detail_max: u32,
+    /// Crease angle used when the scene gives none, degrees.
+    pub default_crease: Option<f32>,
+}
+
+/// What a loaded file holds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FileSummary {
+    /// The file's name, which scenes give as `model.source` to draw it.
+    pub name: String,
+    /// Distinct vertex positions.
+    pub vertices: usize,
+    /// Polygons.
+    pub polygons: usize,
+    /// Triangles once polygons are split into fans.
+    pub triangles: usize,
+    /// Whether the file gives a normal at every face corner.
+    pub has_normals: bool,
+}
+
+/// What a frame was: its size and what it cost.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FrameInfo {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// The renderer's counts.
+    #[serde(serialize_with = "serialize_stats")]
+    pub stats: RenderStats,
+}
+
+fn serialize_stats<S: serde::Serializer>(s: &RenderStats, out: S) -> Result<S::Ok, S::Error> {
+    #[derive(Serialize)]
+    struct Stats {
+        polygons: u64,
+        degenerate: u64,
+        invisible: u64,
+        culled: u64,
+        rasterized: u64,
+        fragments_shaded: u64,
+        lighting_evaluations: u64,
+        covered_pixels: u64,
+    }
+    Stats {
+        polygons: s.polygons,
+        degenerate: s.degenerate,
+        invisible: s.invisible,
+        culled: s.culled,
+        rasterized: s.rasterized,
+        fragments_shaded: s.fragments_shaded,
+        lighting_evaluations: s.lighting_evaluations,
+        covered_pixels: s.covered_pixels,
+    }
+    .serialize(out)
+}
+
+/// What decides the prepared mesh and normals.
+#[derive(Debug, Clone, PartialEq)]
+struct ModelKey {
+    model: ModelSection,
+    has_camera: bool,
+    file_generation: u64,
+}
+
+/// The user's file, parsed.
+#[derive(Debug)]
+struct UserFile {
+    name: String,
+    mesh: Mesh,
+}
+
+/// Renders panels from scene text, keeping the prepared model between frames
+/// while the scene's `[model]` section (and whether it gives a camera) stays the same.
+#[derive(Debug, Default)]
+pub struct Engine {
+    renderer: Renderer,
+    /// The user's file, and a count that changes with each file loaded.
+    file: Option<UserFile>,
+    file_generation: u64,
+    /// The scene of the last frame, with the key of its model: requests about
+    /// that frame (a pixel's lighting terms, say) can use it as drawn.
+    prepared: Option<(ModelKey, Scene)>,
+    /// The last frame, its options and its pixels as RGBA.
+    image: Option<Image>,
+    options: Option<RenderOptions>,
+    rgba: Vec<u8>,
+}
+
+impl Engine {
+    /// A new engine with no file loaded.
+    pub fn new() -> Engine {
+        Engine::default()
+    }
+
+    /// The built-in models.
+    pub fn models() -> Vec<ModelEntry> {
+        shadelab_core::BUILTIN_MODELS
+            .iter()
+            .map(|m| ModelEntry {
+                name: m.name,
+                description: m.description,
+                detail_meaning: m.detail_meaning,
+                default_detail: m.default_detail,
+                detail_min: m.detail_range.0,
+                detail_max: m.detail_range.1,
+                default_crease: m.default_crease_degrees,
+            })
+            .collect()
+    }
+
+    /// Parses the user's mesh file (the format chosen by `name`'s
+    /// extension) and keeps it as the file scenes can name. On error the
+    /// previous file stays.
+    ///
+    /// # Errors
+    /// The loader's message (naming the file and the line or byte offset),
+    /// or that the file is larger than [`MAX_FILE_BYTES`].
+    pub fn load_file(&mut self, name: &str, bytes: &[u8]) -> Result<FileSummary, EngineError> {
+        if bytes.len() > MAX_FILE_BYTES {
+            return Err(EngineError(format!(
+                "{name}: {} bytes is more than the viewer's limit of {} MiB",
+                bytes.len(),
+                MAX_FILE_BYTES >> 20
+            )));
+        }
+        if shadelab_core::builtin_model_info(name).is_some() {
+            return Err(EngineError(format!(
+                "{name}: a file may not have the name of a built-in model"
+            )));
+        }
+        let mesh = parse_mesh(bytes, name).map_err(|e| EngineError(e.to_string()))?;
+        let summary = FileSummary {
+            name: name.to_owned(),
+            vertices: mesh.positions().len(),
+            polygons: mesh.polygon_count(),
+            triangles: mesh.triangle_count(),
+            has_normals: mesh.file_normals().is_some(),
+        };
+        self.file = Some(UserFile {
+            name: name.to_owned(),
+            mesh,
+        });
+        self.file_generation += 1;
+        Ok(summary)
+    }
+
+    /// Renders the scene `toml` (a scene file's text) into the engine's
+    /// frame; [`Engine::rgba`] then holds its pixels.
+    ///
+    /// # Errors
+    /// The scene's error naming the key (as `shadelab render` reports it),
+    /// or that `model.source` names a file that has not been loaded.
+    pub fn render(&mut self, toml: &str) -> Result<FrameInfo, EngineError> {
+        let file = SceneFile::parse(toml, "scene")?;
+        let options = file.render_options()?;
+        let key = ModelKey {
+            model: file.model.clone(),
+            has_camera: file.camera.is_some(),
+            file_generation: self.file_generation,
+        };
+        let mut scene = match self.prepared.take() {
+            Some((k, scene)) if k == key => scene,
+            _ => self.prepare(&file, &options)?,
+        };
+        let result = file.update_scene(&mut scene, &options);
+        // Keep the model even when the rest of the scene is invalid.
+        let scene = &self.prepared.insert((key, scene)).1;
+        result?;
+        let image = self
+            .image
+            .get_or_insert_with(|| Image::filled(1, 1, Rgb8::default()));
+        let stats = self
+            .renderer
+            .render_into(scene, &options, image)
+            .map_err(|e| EngineError(e.to_string()))?;
+        self.rgba.clear();
+        self.rgba.reserve(image.pixels().len() * 4);
+        for p in image.pixels() {
+            let [r, g, b] = p.0;
+            self.rgba.extend_from_slice(&[r, g, b, 255]);
+        }
+        self.options = Some(options);
+        Ok(FrameInfo {
+            width: options.width,
+            height: options.height,
+            stats,
+        })
+    }
+
+    /// The mesh and normals for `file`'s `[model]` section, in a scene whose
+    /// camera, lights and material are still to be set.
+    fn prepare(&self, file: &SceneFile, options: &RenderOptions) -> Result<Scene, EngineError> {
+        let user_file = &self.file;
+        let (mesh, default_crease) = file.model_mesh(|source| match user_file {
+            Some(f) if f.name == source => Ok(f.mesh.clone()),
+            _ => Err(SceneError::Value {
+                key: "model.source".into(),
+                message: format!(
+                    "{source:?} is neither a built-in model nor the file loaded into the viewer"
+                ),
+            }),
+        })?;
+        let (mesh, normals) = file.prepare_model(mesh, default_crease)?;
+        Ok(file.build_scene(mesh, normals, options)?)
+    }
+
+    /// The last frame's pixels, RGBA with alpha 255, row 0 at the top
+    /// (empty before the first frame).
+    pub fn rgba(&self) -> &[u8] {
+        &self.rgba
+    }
+
+    /// The last frame as an image, for tests.
+    pub fn image(&self) -> Option<&Image> {
+        self.image.as_ref()
+    }
+}
