@@ -4,6 +4,11 @@
 //! documented defaults); command-line flags override its fields; then
 //! [`SceneFile::resolve`] checks every value, loads the model and builds the
 //! core's [`Scene`] and [`RenderOptions`]. Errors name the key at fault.
+//!
+//! A model file's material (an OBJ file's `.mtl` colours, see
+//! [`crate::load_mesh_file`]) fills in what the scene leaves unset: `kd` takes
+//! the material's `Kd`, and `ka` its `Ka`, or its `Kd` when it gives no `Ka`.
+//! A value in the scene (or a flag) always wins.
 
 use std::path::{Path, PathBuf};
 
@@ -15,7 +20,7 @@ use shadelab_core::{
     Shading, Specular, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
 };
 
-use crate::{load_mesh, LoadError};
+use crate::{load_mesh_file, FileMaterial, LoadError};
 
 /// A scene file as written: every key optional.
 #[derive(Debug, Clone, Default, Deserialize, PartialEq)]
@@ -384,7 +389,7 @@ impl SceneFile {
             specular: r.specular.map(Specular::from).unwrap_or_default(),
         };
 
-        let (mesh, default_crease) = self.load_model(base_dir)?;
+        let (mesh, default_crease, file_material) = self.load_model(base_dir)?;
         let crease = match self.model.crease_angle {
             Some(a) if !(a.is_finite() && (0.0..=180.0).contains(&a)) => {
                 return Err(value_error(
@@ -455,9 +460,18 @@ impl SceneFile {
             .collect::<Result<Vec<_>, _>>()?;
 
         let m = &self.material;
+        let default_color = rgb("material", [255, 60, 60])?;
+        let file_kd = file_material.as_ref().and_then(|f| f.kd);
+        let file_ka = file_material.as_ref().and_then(|f| f.ka.or(f.kd));
         let material = Material {
-            ka: rgb("material.ka", m.ka.unwrap_or([255, 60, 60]))?,
-            kd: rgb("material.kd", m.kd.unwrap_or([255, 60, 60]))?,
+            ka: match m.ka {
+                Some(c) => rgb("material.ka", c)?,
+                None => file_ka.unwrap_or(default_color),
+            },
+            kd: match m.kd {
+                Some(c) => rgb("material.kd", c)?,
+                None => file_kd.unwrap_or(default_color),
+            },
             ks: rgb("material.ks", m.ks.unwrap_or([255, 255, 255]))?,
             shininess: non_negative("material.shininess", m.shininess.unwrap_or(32.0))?,
         };
@@ -480,13 +494,16 @@ impl SceneFile {
         ))
     }
 
-    /// The model's mesh and its default crease angle.
-    fn load_model(&self, base_dir: &Path) -> Result<(Mesh, Option<f32>), SceneError> {
+    /// The model's mesh, its default crease angle and its file's material.
+    fn load_model(
+        &self,
+        base_dir: &Path,
+    ) -> Result<(Mesh, Option<f32>, Option<FileMaterial>), SceneError> {
         let source = self.model.source.as_deref().unwrap_or("teapot");
         if let Some(info) = builtin_model_info(source) {
             let mesh = builtin_model(source, self.model.detail)
                 .map_err(|e| value_error("model.detail", e.to_string()))?;
-            return Ok((mesh, info.default_crease_degrees));
+            return Ok((mesh, info.default_crease_degrees, None));
         }
         if self.model.detail.is_some() {
             return Err(value_error(
@@ -504,7 +521,8 @@ impl SceneFile {
                 ),
             ));
         }
-        Ok((load_mesh(&path)?, None))
+        let file = load_mesh_file(&path)?;
+        Ok((file.mesh, None, file.material))
     }
 }
 
