@@ -10,7 +10,9 @@
 //! Smoothing groups (an OBJ file's `s` statements, kept by the mesh) split
 //! vertices too: a face only takes part in a corner's normal when it is in
 //! the same group as the corner's face, and a face in no group
-//! ([`Mesh::NOT_SMOOTHED`]) keeps its face normal at every corner. A crease
+//! ([`Mesh::NOT_SMOOTHED`]) is smoothed with no other, so its corners take
+//! its face normal. The normals are exactly those of the mesh cut apart along
+//! the groups' boundaries (the same faces summed in the same order). A crease
 //! angle and smoothing groups apply together: a face must pass both.
 
 use std::collections::HashMap;
@@ -162,7 +164,8 @@ pub fn vertex_normals(
     // Whether face `other` takes part in the normals of face `own`'s corners.
     let cos_limit = crease_degrees.map(|d| d.to_radians().cos());
     let joins = |own: usize, own_normal: Vec3, other: usize| {
-        let same_group = groups.is_none_or(|g| g[other] == g[own]);
+        let same_group = groups
+            .is_none_or(|g| g[other] == g[own] && (g[own] != Mesh::NOT_SMOOTHED || other == own));
         let within_crease = cos_limit
             .is_none_or(|limit| faces[other].is_some_and(|n| n.dot(own_normal) >= limit - 1e-6));
         same_group && within_crease
@@ -179,9 +182,7 @@ pub fn vertex_normals(
         .enumerate()
         .map(|(c, &v)| {
             let face = corner_face[c];
-            let faceted = groups.is_some_and(|g| g[face] == Mesh::NOT_SMOOTHED);
             let n = faces[face]
-                .filter(|_| !faceted)
                 .and_then(|own| {
                     corners_of_vertex[v as usize]
                         .iter()

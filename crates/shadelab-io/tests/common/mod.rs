@@ -9,8 +9,12 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use shadelab_core::Mesh;
 
+/// Writes `bytes` as `name` (which may name a subdirectory) in `dir`.
 pub fn write(dir: &Path, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
     let path = dir.join(name);
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent).unwrap();
+    }
     std::fs::write(&path, bytes).unwrap();
     path
 }
