@@ -264,6 +264,23 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
         let Some((keyword, rest)) = split_keyword(statement) else {
             continue;
         };
+        // A face's corners are counted against the limits before they are
+        // gathered, so an absurdly long line allocates nothing.
+        if keyword == "f" {
+            let count = rest.split_whitespace().count();
+            if corners + count > Mesh::MAX_CORNERS {
+                return Err(error(format!(
+                    "more than {} face corners",
+                    Mesh::MAX_CORNERS
+                )));
+            }
+            if triangles + count.saturating_sub(2) > Mesh::MAX_TRIANGLES {
+                return Err(error(format!(
+                    "more than {} triangles: that is the most supported",
+                    Mesh::MAX_TRIANGLES
+                )));
+            }
+        }
         let args: Vec<&str> = rest.split_whitespace().collect();
         match keyword {
             "v" | "vn" => {
@@ -325,18 +342,6 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
                 faces += 1;
                 corners += args.len();
                 triangles += args.len() - 2;
-                if corners > Mesh::MAX_CORNERS {
-                    return Err(error(format!(
-                        "more than {} face corners",
-                        Mesh::MAX_CORNERS
-                    )));
-                }
-                if triangles > Mesh::MAX_TRIANGLES {
-                    return Err(error(format!(
-                        "more than {} triangles: that is the most supported",
-                        Mesh::MAX_TRIANGLES
-                    )));
-                }
                 statements.push('f');
                 for corner in &args {
                     let mut parts = corner.split('/');

@@ -704,3 +704,125 @@ fn no_panic_on_mangled_files() {
         }
     }
 }
+
+/// The failure modes every loader must meet, one by one, each a typed error
+/// naming the file: empty, truncated, wrong magic, not UTF-8 where text is
+/// expected, over the size ceiling.
+#[test]
+fn every_loader_rejects_bad_bytes_with_a_typed_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let (p, faces) = cube();
+    let polys: Vec<Vec<u32>> = faces.iter().map(|f| f.to_vec()).collect();
+    let buffer = tetra_buffer();
+    let gltf = tetra_doc(Some(&data_uri(&buffer)), TWO_NODES, "[0,2]").json();
+    let glb_bytes = glb(&tetra_doc(None, r#"[{"mesh":0}]"#, "[0]").json(), &buffer);
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        // Empty files.
+        ("empty.obj", vec![], "no faces"),
+        ("empty.stl", vec![], "too short"),
+        ("empty.ply", vec![], "not a PLY file"),
+        ("empty.gltf", vec![], "not a valid glTF"),
+        ("empty.glb", vec![], "not a valid glTF"),
+        // Truncated.
+        (
+            "cut.obj",
+            obj.as_bytes()[..obj.len() - 3].to_vec(),
+            "at least 3 vertices",
+        ),
+        (
+            "cut.ply",
+            binary_ply(&p, &polys, None, false)[..150].to_vec(),
+            "PLY header",
+        ),
+        (
+            "cut.gltf",
+            gltf.as_bytes()[..gltf.len() / 2].to_vec(),
+            "not a valid glTF",
+        ),
+        (
+            "cut.glb",
+            glb_bytes[..glb_bytes.len() - 8].to_vec(),
+            "not a valid glTF",
+        ),
+        // Wrong magic.
+        (
+            "magic.glb",
+            [b"glTX", &glb_bytes[4..]].concat(),
+            "not a valid glTF",
+        ),
+        ("magic.stl", vec![b'x'; 200], "not ascii stl"),
+        // Not UTF-8 where text is expected.
+        (
+            "latin1.obj",
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\n# caf\xe9\nf 1 2 3\n".to_vec(),
+            "not UTF-8",
+        ),
+        (
+            "latin1.stl",
+            b"solid caf\xe9\nfacet normal 0 0 0\nouter loop\nvertex \xff 0 0\n".to_vec(),
+            "ascii stl",
+        ),
+        (
+            "latin1.ply",
+            b"ply\nformat ascii 1.0\ncomment \xff\xfe\nend_header\n".to_vec(),
+            "ply",
+        ),
+        (
+            "latin1.gltf",
+            [b"{\"asset\":\xff".as_slice(), b"}"].concat(),
+            "not a valid glTF",
+        ),
+    ];
+    for (name, bytes, needle) in cases {
+        let path = write(dir.path(), name, &bytes);
+        let error = load_mesh(&path).expect_err(name);
+        assert!(
+            matches!(error, LoadError::Invalid { .. } | LoadError::Syntax { .. }),
+            "{name}: {error:?}"
+        );
+        let shown = error.to_string();
+        assert!(shown.starts_with(&path.display().to_string()), "{shown}");
+        assert!(
+            shown.to_lowercase().contains(&needle.to_lowercase()),
+            "{name}: {shown:?} lacks {needle:?}"
+        );
+    }
+    // Over the size ceiling, for the formats not checked above: sparse files,
+    // refused before reading.
+    for name in ["big.obj", "big.gltf"] {
+        let path = dir.path().join(name);
+        std::fs::File::create(&path)
+            .unwrap()
+            .set_len(MAX_MESH_BYTES + 1)
+            .unwrap();
+        assert!(
+            matches!(load_mesh(&path), Err(LoadError::TooLarge { ref path, .. }) if path.contains(name)),
+            "{name}"
+        );
+    }
+}
+
+/// An OBJ face with more corners than the triangle ceiling allows fails at
+/// its line, before its corners are gathered.
+#[test]
+fn obj_beyond_the_triangle_ceiling() {
+    let corners = Mesh::MAX_TRIANGLES + 3;
+    let mut text = String::with_capacity(2 * corners + 40);
+    text.push_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nf");
+    for _ in 0..corners {
+        text.push_str(" 1");
+    }
+    text.push('\n');
+    match shadelab_io::parse_obj(&text, "huge.obj") {
+        Err(LoadError::Syntax {
+            line: 4, message, ..
+        }) => {
+            assert!(
+                message.contains("more than 16777216 triangles"),
+                "{message}"
+            );
+        }
+        other => panic!("expected a syntax error at line 4, got {other:?}"),
+    }
+}

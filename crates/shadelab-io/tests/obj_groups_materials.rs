@@ -436,3 +436,23 @@ fn the_file_material_fills_in_what_the_scene_leaves_unset() {
         (default, default)
     );
 }
+
+/// The README's example, `docs/examples/groups.obj`: three smoothing groups
+/// (two halves and a faceted cap) and a teal material from `groups.mtl`.
+#[test]
+fn the_documented_example() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/examples/groups.obj");
+    let file = load_obj_file(&path).unwrap();
+    let mut groups = file.mesh.smoothing_groups().unwrap().to_vec();
+    assert_eq!(groups.len(), 16 * 8);
+    groups.sort_unstable();
+    groups.dedup();
+    assert_eq!(groups, [0, 1, 2]);
+    let material = file.material.unwrap();
+    assert_eq!(
+        (material.name.as_str(), material.library.as_str()),
+        ("teal", "groups.mtl")
+    );
+    assert_eq!(material.ka, Some(Rgb::new(0.1, 0.5, 0.5)));
+    assert_eq!(material.kd, Some(Rgb::new(0.2, 0.7, 0.7)));
+}
