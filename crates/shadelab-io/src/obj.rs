@@ -105,16 +105,25 @@ fn find_material(
     libraries: &[String],
     read_library: &mut dyn FnMut(&str) -> Option<String>,
 ) -> Option<FileMaterial> {
+    // Each library is read once, however often it is named.
+    let mut tried = std::collections::HashSet::new();
+    let mut read_once = |file: &str| {
+        if tried.insert(file.to_owned()) {
+            read_library(file)
+        } else {
+            None
+        }
+    };
     for statement in libraries {
         // `mtllib` takes several names separated by blanks, but exporters
         // also write one name containing blanks: try the whole first.
-        let whole = read_library(statement).map(|text| (statement.as_str(), text));
+        let whole = read_once(statement).map(|text| (statement.as_str(), text));
         let texts: Vec<(&str, String)> = match whole {
             Some(found) => vec![found],
             None => statement
                 .split_whitespace()
                 .filter(|&file| file != statement)
-                .filter_map(|file| read_library(file).map(|text| (file, text)))
+                .filter_map(|file| read_once(file).map(|text| (file, text)))
                 .collect(),
         };
         for (library, text) in texts {

@@ -349,6 +349,20 @@ fn parse_obj_file_asks_for_each_library() {
     )
     .unwrap();
     assert_eq!(asked, ["a.mtl b.mtl", "a.mtl", "b.mtl", "c.mtl"]);
+    // A library named again is not read again.
+    let mut asked = Vec::new();
+    parse_obj_file(
+        &format!(
+            "mtllib a.mtl\nmtllib a.mtl a.mtl\nmtllib a.mtl\n{TRIANGLE}usemtl blue\nf 1 2 3\n"
+        ),
+        "m.obj",
+        &mut |name| {
+            asked.push(name.to_owned());
+            None
+        },
+    )
+    .unwrap();
+    assert_eq!(asked, ["a.mtl", "a.mtl a.mtl"]);
     assert_eq!(file.material.unwrap().library, "c.mtl");
     // No material used: no library is read.
     let mut asked = 0;
