@@ -826,3 +826,55 @@ fn obj_beyond_the_triangle_ceiling() {
         other => panic!("expected a syntax error at line 4, got {other:?}"),
     }
 }
+
+/// A zero normal makes a file's normals unusable (they are computed, as for
+/// OBJ); a NaN normal is an error.
+#[test]
+fn zero_and_nan_file_normals() {
+    let dir = tempfile::tempdir().unwrap();
+    let (p, faces) = cube();
+    let polys: Vec<Vec<u32>> = faces.iter().map(|f| f.to_vec()).collect();
+    let mut normals: Vec<Vec3> = p.iter().map(|v| *v - Vec3::splat(0.5)).collect();
+    let path = write(
+        dir.path(),
+        "good.ply",
+        binary_ply(&p, &polys, Some(&normals), false),
+    );
+    assert!(load_ply(&path).unwrap().file_normals().is_some());
+    normals[3] = Vec3::ZERO;
+    let path = write(
+        dir.path(),
+        "zero.ply",
+        binary_ply(&p, &polys, Some(&normals), false),
+    );
+    let mesh = load_ply(&path).unwrap();
+    assert!(mesh.file_normals().is_none());
+    assert_eq!(mesh.polygon_count(), 6);
+    normals[3] = Vec3::new(0.0, f32::NAN, 1.0);
+    let path = write(
+        dir.path(),
+        "nan.ply",
+        binary_ply(&p, &polys, Some(&normals), true),
+    );
+    assert_invalid(load_ply(&path), &path, "normal 3");
+
+    // glTF: the tetrahedron with one normal zeroed, then NaN.
+    let mut buffer = tetra_buffer();
+    let normal_at = 4 * 12 + 12; // the second vertex's normal
+    buffer[normal_at..normal_at + 12].copy_from_slice(&f32_bytes([0.0, 0.0, 0.0]));
+    let one = r#"[{"mesh":0}]"#;
+    let path = write(
+        dir.path(),
+        "zero.glb",
+        glb(&tetra_doc(None, one, "[0]").json(), &buffer),
+    );
+    let mesh = load_gltf(&path).unwrap();
+    assert!(mesh.file_normals().is_none());
+    buffer[normal_at..normal_at + 12].copy_from_slice(&f32_bytes([0.0, f32::NAN, 0.0]));
+    let path = write(
+        dir.path(),
+        "nan.glb",
+        glb(&tetra_doc(None, one, "[0]").json(), &buffer),
+    );
+    assert_invalid(load_gltf(&path), &path, "normal 1");
+}
