@@ -3,6 +3,16 @@
 //! A mesh keeps polygons as they came (triangles, quads, n-gons) because the
 //! scanline rasterizer interpolates over a polygon directly, as the textbook
 //! does; triangulating would change what Gouraud shading shows on a quad.
+//!
+//! Besides geometry a mesh may carry what its file said about shading: normals
+//! per corner ([`Mesh::file_normals`]) and smoothing groups per face
+//! ([`Mesh::smoothing_groups`]), which [`crate::vertex_normals`] honours.
+//!
+//! Size is bounded so that memory stays predictable whatever a file claims:
+//! at most [`Mesh::MAX_TRIANGLES`] triangles (counting a polygon of `n`
+//! corners as `n − 2`), [`Mesh::MAX_CORNERS`] corners and
+//! [`Mesh::MAX_VERTICES`] vertices. Loaders check these limits against a
+//! file's header or running counts before they allocate.
 
 use glam::Vec3;
 
@@ -45,6 +55,20 @@ pub enum MeshError {
     /// The mesh exceeds [`Mesh::MAX_CORNERS`].
     #[error("the mesh has {0} face corners; at most {max} are supported", max = Mesh::MAX_CORNERS)]
     TooLarge(usize),
+    /// The mesh exceeds [`Mesh::MAX_TRIANGLES`].
+    #[error("the mesh has at least {0} triangles; at most {max} are supported", max = Mesh::MAX_TRIANGLES)]
+    TooManyTriangles(usize),
+    /// The mesh exceeds [`Mesh::MAX_VERTICES`].
+    #[error("the mesh has {0} vertices; at most {max} are supported", max = Mesh::MAX_VERTICES)]
+    TooManyVertices(usize),
+    /// Smoothing groups do not match the polygons.
+    #[error("{groups} smoothing groups for {faces} faces")]
+    SmoothingGroups {
+        /// Groups given.
+        groups: usize,
+        /// Faces in the mesh.
+        faces: usize,
+    },
 }
 
 /// One normal per polygon corner, by index into a table of unit normals.
@@ -67,28 +91,53 @@ pub struct Mesh {
     corners: Vec<u32>,
     offsets: Vec<u32>,
     file_normals: Option<CornerNormals>,
+    smoothing_groups: Option<Vec<u32>>,
 }
 
 impl Mesh {
-    /// The largest number of polygon corners a mesh may have (2^28, about 89
-    /// million triangles), so that every index fits comfortably in `u32`.
+    /// The largest number of polygon corners a mesh may have (2^28), so that
+    /// every index fits comfortably in `u32`.
     pub const MAX_CORNERS: usize = 1 << 28;
+
+    /// The largest number of triangles a mesh may have, a polygon of `n`
+    /// corners counting as `n − 2`: 2^24, 16,777,216. Loading and rendering
+    /// take about 200 bytes per triangle, so a mesh at the ceiling needs a
+    /// few GiB; the largest common scanned meshes (a few million triangles)
+    /// are well inside it.
+    pub const MAX_TRIANGLES: usize = 1 << 24;
+
+    /// The largest number of vertices a mesh may have: three per triangle of
+    /// [`Mesh::MAX_TRIANGLES`], enough for a triangle soup.
+    pub const MAX_VERTICES: usize = 3 * Self::MAX_TRIANGLES;
+
+    /// The smoothing group that smooths nothing: a face in it is faceted.
+    pub const NOT_SMOOTHED: u32 = 0;
 
     /// Builds a mesh from positions and polygons given as lists of vertex indices.
     ///
     /// # Errors
     /// [`MeshError`] when there is no polygon, a polygon has fewer than three
-    /// corners, an index is out of range or a position is not finite.
+    /// corners, an index is out of range, a position is not finite, or the
+    /// mesh is beyond [`Mesh::MAX_VERTICES`], [`Mesh::MAX_CORNERS`] or
+    /// [`Mesh::MAX_TRIANGLES`].
     pub fn from_polygons<P: AsRef<[u32]>>(
         positions: Vec<Vec3>,
         polygons: impl IntoIterator<Item = P>,
     ) -> Result<Mesh, MeshError> {
+        if positions.len() > Self::MAX_VERTICES {
+            return Err(MeshError::TooManyVertices(positions.len()));
+        }
         let mut corners = Vec::new();
         let mut offsets = vec![0u32];
+        let mut triangles = 0usize;
         for polygon in polygons {
             let polygon = polygon.as_ref();
             if corners.len() + polygon.len() > Self::MAX_CORNERS {
                 return Err(MeshError::TooLarge(corners.len() + polygon.len()));
+            }
+            triangles += polygon.len().saturating_sub(2);
+            if triangles > Self::MAX_TRIANGLES {
+                return Err(MeshError::TooManyTriangles(triangles));
             }
             corners.extend_from_slice(polygon);
             offsets.push(corners.len() as u32);
@@ -98,6 +147,7 @@ impl Mesh {
             corners,
             offsets,
             file_normals: None,
+            smoothing_groups: None,
         };
         mesh.validate()?;
         Ok(mesh)
@@ -133,6 +183,25 @@ impl Mesh {
             })?;
         }
         self.file_normals = Some(normals);
+        Ok(self)
+    }
+
+    /// Attaches smoothing groups, one per polygon, as an OBJ file's `s`
+    /// statements give them: vertex normals are only averaged between faces
+    /// of the same group, and a face in [`Mesh::NOT_SMOOTHED`] is faceted
+    /// (its corners take its face normal). Without smoothing groups every
+    /// face may be smoothed with every other.
+    ///
+    /// # Errors
+    /// [`MeshError::SmoothingGroups`] when there is not one group per polygon.
+    pub fn with_smoothing_groups(mut self, groups: Vec<u32>) -> Result<Mesh, MeshError> {
+        if groups.len() != self.polygon_count() {
+            return Err(MeshError::SmoothingGroups {
+                groups: groups.len(),
+                faces: self.polygon_count(),
+            });
+        }
+        self.smoothing_groups = Some(groups);
         Ok(self)
     }
 
@@ -205,6 +274,12 @@ impl Mesh {
     /// Normals that came with the model, if any.
     pub fn file_normals(&self) -> Option<&CornerNormals> {
         self.file_normals.as_ref()
+    }
+
+    /// Each polygon's smoothing group, if the model has them (see
+    /// [`Mesh::with_smoothing_groups`]).
+    pub fn smoothing_groups(&self) -> Option<&[u32]> {
+        self.smoothing_groups.as_deref()
     }
 
     /// The axis-aligned bounding box, as (min, max).

@@ -6,6 +6,14 @@
 //! unit normals of the faces around the vertex; with a crease angle, a face
 //! only takes part in a corner's normal when it bends from that corner's face
 //! by no more than the angle, which splits vertices along sharp edges.
+//!
+//! Smoothing groups (an OBJ file's `s` statements, kept by the mesh) split
+//! vertices too: a face only takes part in a corner's normal when it is in
+//! the same group as the corner's face, and a face in no group
+//! ([`Mesh::NOT_SMOOTHED`]) is smoothed with no other, so its corners take
+//! its face normal. The normals are exactly those of the mesh cut apart along
+//! the groups' boundaries (the same faces summed in the same order). A crease
+//! angle and smoothing groups apply together: a face must pass both.
 
 use std::collections::HashMap;
 
@@ -85,9 +93,11 @@ pub fn face_normals(mesh: &Mesh) -> Vec<Option<Vec3>> {
 /// Vertex normals of `mesh` with the given weighting, one per corner.
 ///
 /// With `crease_degrees`, a corner's normal only sums the faces around its
-/// vertex whose normal is within that angle of its own face's normal.
-/// A corner whose sum vanishes (or whose face is degenerate) falls back to
-/// its face normal, or +z for a degenerate face.
+/// vertex whose normal is within that angle of its own face's normal; when
+/// the mesh has smoothing groups, only the faces of its own face's group
+/// (and none for a face in [`Mesh::NOT_SMOOTHED`], whose corners take its
+/// face normal). A corner whose sum vanishes (or whose face is degenerate)
+/// falls back to its face normal, or +z for a degenerate face.
 pub fn vertex_normals(
     mesh: &Mesh,
     weighting: NormalWeighting,
@@ -128,63 +138,66 @@ pub fn vertex_normals(
         .flat_map(|f| mesh.corner_range(f).map(move |_| f))
         .collect();
 
-    match crease_degrees {
-        None => {
-            let mut sum = vec![Vec3::ZERO; positions.len()];
-            for (c, &v) in mesh.corners().iter().enumerate() {
-                sum[v as usize] += contribution[c];
-            }
-            let mut normals: Vec<Vec3> = sum.iter().map(|s| s.normalize_or_zero()).collect();
-            let corner = mesh
-                .corners()
-                .iter()
-                .enumerate()
-                .map(|(c, &v)| {
-                    if normals[v as usize] == Vec3::ZERO {
-                        normals.push(fallback(corner_face[c]));
-                        (normals.len() - 1) as u32
-                    } else {
-                        v
-                    }
-                })
-                .collect();
-            CornerNormals { normals, corner }
+    let groups = mesh.smoothing_groups();
+    if crease_degrees.is_none() && groups.is_none() {
+        let mut sum = vec![Vec3::ZERO; positions.len()];
+        for (c, &v) in mesh.corners().iter().enumerate() {
+            sum[v as usize] += contribution[c];
         }
-        Some(degrees) => {
-            let cos_limit = degrees.to_radians().cos();
-            let mut corners_of_vertex = vec![Vec::new(); positions.len()];
-            for (c, &v) in mesh.corners().iter().enumerate() {
-                corners_of_vertex[v as usize].push(c as u32);
-            }
-            let mut normals = Vec::new();
-            let mut seen: HashMap<(u32, [u32; 3]), u32> = HashMap::new();
-            let corner = mesh
-                .corners()
-                .iter()
-                .enumerate()
-                .map(|(c, &v)| {
-                    let own = faces[corner_face[c]];
-                    let n = own
-                        .and_then(|own| {
-                            corners_of_vertex[v as usize]
-                                .iter()
-                                .filter(|&&o| {
-                                    faces[corner_face[o as usize]]
-                                        .is_some_and(|fo| fo.dot(own) >= cos_limit - 1e-6)
-                                })
-                                .map(|&o| contribution[o as usize])
-                                .sum::<Vec3>()
-                                .try_normalize()
-                        })
-                        .unwrap_or_else(|| fallback(corner_face[c]));
-                    let key = (v, n.to_array().map(f32::to_bits));
-                    *seen.entry(key).or_insert_with(|| {
-                        normals.push(n);
-                        (normals.len() - 1) as u32
-                    })
-                })
-                .collect();
-            CornerNormals { normals, corner }
-        }
+        let mut normals: Vec<Vec3> = sum.iter().map(|s| s.normalize_or_zero()).collect();
+        let corner = mesh
+            .corners()
+            .iter()
+            .enumerate()
+            .map(|(c, &v)| {
+                if normals[v as usize] == Vec3::ZERO {
+                    normals.push(fallback(corner_face[c]));
+                    (normals.len() - 1) as u32
+                } else {
+                    v
+                }
+            })
+            .collect();
+        return CornerNormals { normals, corner };
     }
+
+    // Whether face `other` takes part in the normals of face `own`'s corners.
+    let cos_limit = crease_degrees.map(|d| d.to_radians().cos());
+    let joins = |own: usize, own_normal: Vec3, other: usize| {
+        let same_group = groups
+            .is_none_or(|g| g[other] == g[own] && (g[own] != Mesh::NOT_SMOOTHED || other == own));
+        let within_crease = cos_limit
+            .is_none_or(|limit| faces[other].is_some_and(|n| n.dot(own_normal) >= limit - 1e-6));
+        same_group && within_crease
+    };
+    let mut corners_of_vertex = vec![Vec::new(); positions.len()];
+    for (c, &v) in mesh.corners().iter().enumerate() {
+        corners_of_vertex[v as usize].push(c as u32);
+    }
+    let mut normals = Vec::new();
+    let mut seen: HashMap<(u32, [u32; 3]), u32> = HashMap::new();
+    let corner = mesh
+        .corners()
+        .iter()
+        .enumerate()
+        .map(|(c, &v)| {
+            let face = corner_face[c];
+            let n = faces[face]
+                .and_then(|own| {
+                    corners_of_vertex[v as usize]
+                        .iter()
+                        .filter(|&&o| joins(face, own, corner_face[o as usize]))
+                        .map(|&o| contribution[o as usize])
+                        .sum::<Vec3>()
+                        .try_normalize()
+                })
+                .unwrap_or_else(|| fallback(face));
+            let key = (v, n.to_array().map(f32::to_bits));
+            *seen.entry(key).or_insert_with(|| {
+                normals.push(n);
+                (normals.len() - 1) as u32
+            })
+        })
+        .collect();
+    CornerNormals { normals, corner }
 }

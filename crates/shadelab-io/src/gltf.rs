@@ -17,7 +17,8 @@
 //! of mode `TRIANGLES` (other modes are skipped), indexed or not; its
 //! `POSITION`s transformed to world space. `NORMAL`s, transformed by the
 //! inverse transpose of the node's matrix, become file normals when every
-//! triangle primitive has them (and every transform is invertible). Under a
+//! triangle primitive has them (and every transform is invertible, and no
+//! normal is zero). Under a
 //! transform with a negative determinant the winding is reversed, as the
 //! glTF specification says. Vertices of different primitives are not welded.
 //! Materials, textures, skins, morph targets and cameras are ignored; sparse
@@ -28,7 +29,9 @@
 //! reader sees it: that reader slices and asserts on what it is given
 //! (`count - 1` underflows for an empty accessor, a too-small stride trips
 //! a debug assertion), so checking first keeps malformed files from
-//! panicking. `gltf-json`'s own validation was found (by fuzzing) to panic
+//! panicking; and the counts they declare are checked against
+//! [`Mesh::MAX_VERTICES`] and [`Mesh::MAX_TRIANGLES`] before anything is read
+//! into memory. `gltf-json`'s own validation was found (by fuzzing) to panic
 //! when a primitive's `POSITION` names an accessor that does not exist, so
 //! the file is parsed without validation first, those indices are checked,
 //! and only then is it validated.
@@ -203,6 +206,20 @@ impl Builder {
             .map_err(|m| error(format!("index accessor {}: {m}", i.index())))?;
         }
 
+        let triangles = primitive.indices().map_or(position.count(), |i| i.count()) / 3;
+        if self.triangles.len() + triangles > Mesh::MAX_TRIANGLES {
+            return Err(error(format!(
+                "more than {} triangles in the scene: that is the most supported",
+                Mesh::MAX_TRIANGLES
+            )));
+        }
+        if self.positions.len() + position.count() > Mesh::MAX_VERTICES {
+            return Err(error(format!(
+                "more than {} vertices in the scene: that is the most supported",
+                Mesh::MAX_VERTICES
+            )));
+        }
+
         let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
         let local: Vec<Vec3> = reader
             .read_positions()
@@ -230,12 +247,6 @@ impl Builder {
         {
             return Err(error(format!(
                 "index {k} is {i}, but the primitive has {count} vertices"
-            )));
-        }
-        if self.triangles.len() * 3 + indices.len() > Mesh::MAX_CORNERS {
-            return Err(error(format!(
-                "more than {} triangle corners in the scene",
-                Mesh::MAX_CORNERS
             )));
         }
 
@@ -281,7 +292,10 @@ impl Builder {
             ));
         }
         let mesh = Mesh::from_polygons(self.positions, self.triangles).map_err(mesh_error(name))?;
-        if self.all_normals {
+        // A non-finite normal is an error (from `with_file_normals`); a zero
+        // one means the file's normals are not usable.
+        let usable = |n: &Vec3| !n.is_finite() || n.try_normalize().is_some();
+        if self.all_normals && self.normals.iter().all(usable) {
             let corner = mesh.corners().to_vec();
             mesh.with_file_normals(CornerNormals {
                 normals: self.normals,

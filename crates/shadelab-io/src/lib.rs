@@ -3,6 +3,7 @@
 
 mod gltf;
 mod mesh_file;
+mod mtl;
 mod obj;
 mod ply;
 mod png;
@@ -10,8 +11,10 @@ mod scene;
 mod stl;
 
 pub use gltf::{load_gltf, parse_gltf};
-pub use mesh_file::{load_mesh, parse_mesh, MAX_MESH_BYTES, MESH_EXTENSIONS};
-pub use obj::{load_obj, parse_obj, MAX_OBJ_BYTES};
+pub use mesh_file::{
+    load_mesh, load_mesh_file, parse_mesh, FileMaterial, MeshFile, MAX_MESH_BYTES, MESH_EXTENSIONS,
+};
+pub use obj::{load_obj, load_obj_file, parse_obj, parse_obj_file};
 pub use ply::{load_ply, parse_ply};
 pub use png::{encode_png, read_png, write_png};
 pub use scene::{

@@ -2,21 +2,45 @@
 //!
 //! [`load_mesh`] dispatches on the file's extension (case-insensitive):
 //! `.obj` ([`crate::load_obj`]), `.stl` ([`crate::load_stl`]), `.ply`
-//! ([`crate::load_ply`]), `.gltf` and `.glb` ([`crate::load_gltf`]). Every
-//! loader reads at most [`MAX_MESH_BYTES`] and reports errors as
-//! [`LoadError`]s naming the file.
+//! ([`crate::load_ply`]), `.gltf` and `.glb` ([`crate::load_gltf`]);
+//! [`load_mesh_file`] also gives the surface colours the file names (an OBJ
+//! file's material). Every loader reads at most [`MAX_MESH_BYTES`], builds
+//! meshes within the limits of [`Mesh`] (checked against a file's counts
+//! before allocating), and reports errors as [`LoadError`]s naming the file.
 
 use std::io::Read;
 use std::path::Path;
 
-use shadelab_core::{Mesh, MeshError};
+use shadelab_core::{Mesh, MeshError, Rgb};
 
 use crate::LoadError;
 
-/// Largest mesh file read, in bytes, whatever its format (the same 1 GiB as
-/// [`crate::MAX_OBJ_BYTES`]). For glTF it bounds the `.gltf` file and every
-/// external buffer together.
-pub const MAX_MESH_BYTES: u64 = crate::MAX_OBJ_BYTES;
+/// Largest mesh file read, in bytes, whatever its format: 1 GiB. For glTF it
+/// bounds the `.gltf` file and every external buffer together.
+pub const MAX_MESH_BYTES: u64 = 1 << 30;
+
+/// A mesh file's contents: the mesh, and the colours its material gives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshFile {
+    /// The geometry, with the file's normals and smoothing groups if any.
+    pub mesh: Mesh,
+    /// The material the file gives the mesh, if it gives one with a colour.
+    pub material: Option<FileMaterial>,
+}
+
+/// Surface colours a mesh file gives: the `Ka` and `Kd` of the material an
+/// OBJ file uses (the one on the most faces), from its `.mtl` library.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FileMaterial {
+    /// The material's name.
+    pub name: String,
+    /// The library that defines it, as the model file names it.
+    pub library: String,
+    /// Ambient reflectance, 0–1 per channel, if given.
+    pub ka: Option<Rgb>,
+    /// Diffuse reflectance, 0–1 per channel, if given.
+    pub kd: Option<Rgb>,
+}
 
 /// The extensions [`load_mesh`] knows, lower case, without the dot.
 pub const MESH_EXTENSIONS: &[&str] = &["obj", "stl", "ply", "gltf", "glb"];
@@ -28,17 +52,37 @@ pub const MESH_EXTENSIONS: &[&str] = &["obj", "stl", "ply", "gltf", "glb"];
 /// the extension is none of [`MESH_EXTENSIONS`]; otherwise the format
 /// loader's errors.
 pub fn load_mesh(path: &Path) -> Result<Mesh, LoadError> {
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match extension.as_deref() {
+    match extension(path).as_deref() {
         Some("obj") => crate::load_obj(path),
+        _ => load_mesh_file(path).map(|file| file.mesh),
+    }
+}
+
+/// Reads a mesh file as [`load_mesh`] does, with the colours of its
+/// material: for OBJ, those of the material on the most faces, read from
+/// the `.mtl` libraries beside it (see [`crate::load_obj_file`]); the other
+/// formats give none.
+///
+/// # Errors
+/// As [`load_mesh`]; a material library never causes an error.
+pub fn load_mesh_file(path: &Path) -> Result<MeshFile, LoadError> {
+    let mesh = match extension(path).as_deref() {
+        Some("obj") => return crate::load_obj_file(path),
         Some("stl") => crate::load_stl(path),
         Some("ply") => crate::load_ply(path),
         Some("gltf" | "glb") => crate::load_gltf(path),
         _ => Err(unknown_format(&path.display().to_string())),
-    }
+    }?;
+    Ok(MeshFile {
+        mesh,
+        material: None,
+    })
+}
+
+fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
 }
 
 /// Parses a mesh file's bytes, choosing the format by the extension of

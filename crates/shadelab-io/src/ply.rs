@@ -13,7 +13,8 @@
 //! What is read: the `vertex` element's `x`, `y`, `z` (any scalar type, float
 //! or double in practice) and, when all three are present, `nx`, `ny`, `nz`,
 //! which become the mesh's file normals (one per vertex, so each corner uses
-//! its vertex's normal); the `face` element's `vertex_indices` (or
+//! its vertex's normal; a file where one of them is zero is treated as one
+//! without normals, as for OBJ); the `face` element's `vertex_indices` (or
 //! `vertex_index`) list of any integer type. Faces stay polygons. Every other
 //! element and property (colours, texture coordinates, edges, materials) is
 //! read past and ignored. Elements are parsed into small structs, not
@@ -22,8 +23,10 @@
 //! Before any element is read, the header's counts are checked against the
 //! bytes after `end_header` (for binary files, the smallest size each element
 //! can take; for ASCII, one line per element), so a header promising more
-//! elements than the file holds fails at once. `ply-rs-bw` was not seen to
-//! panic on malformed input, so it is called directly.
+//! elements than the file holds fails at once, and so do counts beyond
+//! [`Mesh::MAX_VERTICES`] vertices or [`Mesh::MAX_TRIANGLES`] faces. Memory
+//! then stays within a small multiple of the file's size. `ply-rs-bw` was
+//! not seen to panic on malformed input, so it is called directly.
 
 use std::io::Cursor;
 use std::path::Path;
@@ -108,6 +111,25 @@ pub fn parse_ply(bytes: &[u8], name: &str) -> Result<Mesh, LoadError> {
         PropertyType::List(..) => {}
     }
     let vertex_count = vertex_def.count;
+    if vertex_count > Mesh::MAX_VERTICES {
+        return Err(invalid(
+            name,
+            format!(
+                "the PLY header declares {vertex_count} vertices; at most {} are supported",
+                Mesh::MAX_VERTICES
+            ),
+        ));
+    }
+    if face_def.count > Mesh::MAX_TRIANGLES {
+        return Err(invalid(
+            name,
+            format!(
+                "the PLY header declares {} faces; at most {} triangles are supported",
+                face_def.count,
+                Mesh::MAX_TRIANGLES
+            ),
+        ));
+    }
     check_counts(&header, &bytes[data_start as usize..], data_start, name)?;
 
     let mut positions = Vec::new();
@@ -140,26 +162,22 @@ pub fn parse_ply(bytes: &[u8], name: &str) -> Result<Mesh, LoadError> {
                     .map_err(context)?;
                 polygons = Vec::with_capacity(faces.len());
                 for (k, face) in faces.into_iter().enumerate() {
-                    let corners = face
-                        .indices
-                        .iter()
-                        .map(|&i| {
-                            u32::try_from(i)
-                                .ok()
-                                .filter(|&i| (i as usize) < vertex_count)
-                                .ok_or(i)
-                        })
-                        .collect::<Result<Vec<u32>, i64>>()
-                        .map_err(|i| {
-                            invalid(
-                                name,
-                                format!(
-                                    "PLY face {k} refers to vertex {i}, but there are {} vertices",
-                                    vertex_def.count
-                                ),
-                            )
-                        })?;
-                    polygons.push(corners);
+                    let bad = face.out_of_range.or_else(|| {
+                        face.indices
+                            .iter()
+                            .find(|&&i| i as usize >= vertex_count)
+                            .map(|&i| i64::from(i))
+                    });
+                    if let Some(i) = bad {
+                        return Err(invalid(
+                            name,
+                            format!(
+                                "PLY face {k} refers to vertex {i}, but there are {} vertices",
+                                vertex_def.count
+                            ),
+                        ));
+                    }
+                    polygons.push(face.indices);
                 }
             }
             _ => {
@@ -171,7 +189,13 @@ pub fn parse_ply(bytes: &[u8], name: &str) -> Result<Mesh, LoadError> {
     }
 
     let mesh = Mesh::from_polygons(positions, polygons).map_err(mesh_error(name))?;
-    if with_normals {
+    // A non-finite normal is an error (from `with_file_normals`); a zero one
+    // means the file's normals are not usable.
+    if with_normals
+        && normals
+            .iter()
+            .all(|n| !n.is_finite() || n.try_normalize().is_some())
+    {
         let corner = mesh.corners().to_vec();
         mesh.with_file_normals(CornerNormals { normals, corner })
             .map_err(mesh_error(name))
@@ -262,13 +286,14 @@ fn check_counts(
     Ok(())
 }
 
-/// Three optional coordinates, as read.
+/// Three optional coordinates, as read (a `double` rounded to `f32`, the
+/// precision of a [`Mesh`]).
 #[derive(Default)]
-struct Xyz([f64; 3]);
+struct Xyz([f32; 3]);
 
 impl Xyz {
     fn as_vec3(&self) -> Vec3 {
-        Vec3::new(self.0[0] as f32, self.0[1] as f32, self.0[2] as f32)
+        Vec3::from_array(self.0)
     }
 }
 
@@ -327,7 +352,7 @@ impl PropertyAccess for PlyVertex {
         };
         // The header check made these scalars.
         if let Some(v) = scalar(&property) {
-            *slot = v;
+            *slot = v as f32;
         }
     }
 }
@@ -335,7 +360,9 @@ impl PropertyAccess for PlyVertex {
 /// A `face` element: its vertex indices.
 #[derive(Default)]
 struct PlyFace {
-    indices: Vec<i64>,
+    indices: Vec<u32>,
+    /// An index that is negative or beyond `u32`, if any.
+    out_of_range: Option<i64>,
     /// Whether `indices` came from `vertex_indices`, which wins over `vertex_index`.
     from_indices: bool,
 }
@@ -349,7 +376,8 @@ impl PropertyAccess for PlyFace {
         let preferred = name == "vertex_indices";
         if preferred || (name == "vertex_index" && !self.from_indices) {
             if let Some(indices) = integers(property) {
-                self.indices = indices;
+                self.out_of_range = indices.iter().copied().find(|&i| u32::try_from(i).is_err());
+                self.indices = indices.iter().map(|&i| i as u32).collect();
                 self.from_indices = preferred;
             }
         }

@@ -4,6 +4,11 @@
 //! documented defaults); command-line flags override its fields; then
 //! [`SceneFile::resolve`] checks every value, loads the model and builds the
 //! core's [`Scene`] and [`RenderOptions`]. Errors name the key at fault.
+//!
+//! A model file's material (an OBJ file's `.mtl` colours, see
+//! [`crate::load_mesh_file`]) fills in what the scene leaves unset: `kd` takes
+//! the material's `Kd`, and `ka` its `Ka`, or its `Kd` when it gives no `Ka`.
+//! A value in the scene (or a flag) always wins.
 
 use std::path::{Path, PathBuf};
 
@@ -16,7 +21,7 @@ use shadelab_core::{
     Rgb8, Scene, Shading, Specular, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
 };
 
-use crate::{load_mesh, LoadError};
+use crate::{load_mesh_file, FileMaterial, LoadError};
 
 /// A scene file as written: every key optional.
 #[derive(Debug, Clone, Default, Deserialize, PartialEq)]
@@ -358,6 +363,7 @@ impl SceneFile {
     /// [`SceneError::Value`] naming the key, or [`SceneError::Model`].
     pub fn resolve(&self, base_dir: &Path) -> Result<(Scene, RenderOptions), SceneError> {
         let options = self.render_options()?;
+        let mut file_material = None;
         let (mesh, default_crease) = self.model_mesh(|source| {
             let path = model_path(source, base_dir);
             if !path.exists() && !source.contains('.') && !source.contains('/') {
@@ -369,10 +375,15 @@ impl SceneFile {
                     ),
                 ));
             }
-            Ok(load_mesh(&path)?)
+            let file = load_mesh_file(&path)?;
+            file_material = file.material;
+            Ok(file.mesh)
         })?;
         let (mesh, normals) = self.prepare_model(mesh, default_crease)?;
-        let scene = self.build_scene(mesh, normals, &options)?;
+        let mut scene = self.build_scene(mesh, normals, &options)?;
+        if file_material.is_some() {
+            self.update_scene_with_file_material(&mut scene, &options, file_material.as_ref())?;
+        }
         Ok((scene, options))
     }
 
@@ -586,6 +597,20 @@ impl SceneFile {
         scene: &mut Scene,
         options: &RenderOptions,
     ) -> Result<(), SceneError> {
+        self.update_scene_with_file_material(scene, options, None)
+    }
+
+    /// [`SceneFile::update_scene`], with the colours of the model file's
+    /// material filling in the material keys this file leaves unset.
+    ///
+    /// # Errors
+    /// As [`SceneFile::update_scene`].
+    pub fn update_scene_with_file_material(
+        &self,
+        scene: &mut Scene,
+        options: &RenderOptions,
+        file_material: Option<&FileMaterial>,
+    ) -> Result<(), SceneError> {
         let r = &self.render;
         let aspect = options.width as f32 / options.height as f32;
         let camera = match &self.camera {
@@ -638,9 +663,18 @@ impl SceneFile {
             .collect::<Result<Vec<_>, _>>()?;
 
         let m = &self.material;
+        let default_color = rgb("material", [255, 60, 60])?;
+        let file_kd = file_material.and_then(|f| f.kd);
+        let file_ka = file_material.and_then(|f| f.ka.or(f.kd));
         let material = Material {
-            ka: rgb("material.ka", m.ka.unwrap_or([255, 60, 60]))?,
-            kd: rgb("material.kd", m.kd.unwrap_or([255, 60, 60]))?,
+            ka: match m.ka {
+                Some(c) => rgb("material.ka", c)?,
+                None => file_ka.unwrap_or(default_color),
+            },
+            kd: match m.kd {
+                Some(c) => rgb("material.kd", c)?,
+                None => file_kd.unwrap_or(default_color),
+            },
             ks: rgb("material.ks", m.ks.unwrap_or([255, 255, 255]))?,
             shininess: non_negative("material.shininess", m.shininess.unwrap_or(32.0))?,
         };

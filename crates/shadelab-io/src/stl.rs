@@ -8,7 +8,8 @@
 //! would take such a file for ASCII, so a binary file is handed to it with its
 //! header blanked (the header carries no geometry). A binary file whose count
 //! does not match its length is rejected before `stl_io` sees it, so a header
-//! that claims 2^31 triangles fails at once and allocates nothing.
+//! that claims 2^31 triangles fails at once and allocates nothing; so does a
+//! true count beyond [`Mesh::MAX_TRIANGLES`].
 //!
 //! STL stores every triangle with its own three corners. `stl_io`'s
 //! `IndexedMesh` welds corners whose coordinates have the same bits; this
@@ -70,6 +71,15 @@ pub fn parse_stl(bytes: &[u8], name: &str) -> Result<Mesh, LoadError> {
     let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]);
     let needed = BINARY_HEADER as u64 + BINARY_TRIANGLE as u64 * u64::from(count);
     if needed == bytes.len() as u64 {
+        if count as usize > Mesh::MAX_TRIANGLES {
+            return Err(invalid(
+                name,
+                format!(
+                    "byte 80: the binary STL header declares {count} triangles; at most {} are supported",
+                    Mesh::MAX_TRIANGLES
+                ),
+            ));
+        }
         return parse_binary(bytes, name, count as usize);
     }
     let mismatch = format!(

@@ -1,12 +1,13 @@
 //! STL, PLY and glTF loading, and `load_mesh`'s dispatch, on files written here.
 
-use std::path::{Path, PathBuf};
+mod common;
 
+use std::path::Path;
+
+use common::*;
 use glam::Vec3;
 use shadelab_core::Mesh;
-use shadelab_io::{
-    load_gltf, load_mesh, load_obj, load_ply, load_stl, LoadError, SceneFile, MAX_MESH_BYTES,
-};
+use shadelab_io::{load_gltf, load_mesh, load_ply, load_stl, LoadError, MAX_MESH_BYTES};
 
 // ---------------------------------------------------------------- helpers
 
@@ -35,120 +36,6 @@ fn cube() -> (Vec<Vec3>, Vec<[u32; 4]>) {
         [1, 3, 7, 5], // x = 1
     ];
     (p, faces)
-}
-
-fn write(dir: &Path, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, bytes).unwrap();
-    path
-}
-
-fn binary_stl(header: &[u8], triangles: &[[Vec3; 3]]) -> Vec<u8> {
-    let mut out = vec![0u8; 80];
-    out[..header.len()].copy_from_slice(header);
-    out.extend_from_slice(&(triangles.len() as u32).to_le_bytes());
-    for t in triangles {
-        // A deliberately wrong facet normal: the loader ignores it.
-        for v in [Vec3::new(9.0, 9.0, 9.0), t[0], t[1], t[2]] {
-            for c in v.to_array() {
-                out.extend_from_slice(&c.to_le_bytes());
-            }
-        }
-        out.extend_from_slice(&[0, 0]);
-    }
-    out
-}
-
-fn ascii_stl(first_line: &str, triangles: &[[Vec3; 3]]) -> String {
-    let mut s = format!("{first_line}\n");
-    for t in triangles {
-        s += "  facet normal 0 0 0\n    outer loop\n";
-        for v in t {
-            s += &format!("      vertex {} {} {}\n", v.x, v.y, v.z);
-        }
-        s += "    endloop\n  endfacet\n";
-    }
-    s + "endsolid t\n"
-}
-
-/// A binary PLY: float positions, optional float normals, uchar/int face lists.
-fn binary_ply(
-    positions: &[Vec3],
-    polygons: &[Vec<u32>],
-    normals: Option<&[Vec3]>,
-    big_endian: bool,
-) -> Vec<u8> {
-    let mut header = format!(
-        "ply\nformat binary_{}_endian 1.0\ncomment written by a test\nelement vertex {}\n\
-         property float x\nproperty float y\nproperty float z\n",
-        if big_endian { "big" } else { "little" },
-        positions.len()
-    );
-    if normals.is_some() {
-        header += "property float nx\nproperty float ny\nproperty float nz\n";
-    }
-    header += &format!(
-        "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
-        polygons.len()
-    );
-    let mut out = header.into_bytes();
-    let f32b = |v: f32| {
-        if big_endian {
-            v.to_be_bytes()
-        } else {
-            v.to_le_bytes()
-        }
-    };
-    for (k, p) in positions.iter().enumerate() {
-        for c in p.to_array() {
-            out.extend_from_slice(&f32b(c));
-        }
-        if let Some(n) = normals {
-            for c in n[k].to_array() {
-                out.extend_from_slice(&f32b(c));
-            }
-        }
-    }
-    for poly in polygons {
-        out.push(poly.len() as u8);
-        for &i in poly {
-            let i = i as i32;
-            out.extend_from_slice(&if big_endian {
-                i.to_be_bytes()
-            } else {
-                i.to_le_bytes()
-            });
-        }
-    }
-    out
-}
-
-/// A GLB container around `json` and `bin`.
-fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
-    let mut json = json.as_bytes().to_vec();
-    while json.len() % 4 != 0 {
-        json.push(b' ');
-    }
-    let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::new();
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
-    out
-}
-
-fn f32_bytes(values: impl IntoIterator<Item = f32>) -> Vec<u8> {
-    values.into_iter().flat_map(f32::to_le_bytes).collect()
 }
 
 /// glTF JSON for one buffer of `buffer_len` bytes at `uri` (None: the GLB
@@ -240,44 +127,6 @@ fn tetra_doc<'a>(uri: Option<&'a str>, nodes: &'a str, scene_nodes: &'a str) -> 
         scene_nodes,
         mode: 4,
     }
-}
-
-fn data_uri(bytes: &[u8]) -> String {
-    use base64::Engine;
-    format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(bytes)
-    )
-}
-
-/// Each triangle (after fan triangulation) as its corners' position bits,
-/// rotated to start at the smallest corner (keeping the winding), sorted.
-fn triangle_set(mesh: &Mesh) -> Vec<[[u32; 3]; 3]> {
-    let p = mesh.positions();
-    let mut out = Vec::new();
-    for f in 0..mesh.polygon_count() {
-        let poly = mesh.polygon(f);
-        for k in 1..poly.len() - 1 {
-            let t = [poly[0], poly[k], poly[k + 1]]
-                .map(|i| p[i as usize].to_array().map(|c| (c + 0.0).to_bits()));
-            let m = (0..3).min_by_key(|&r| t[r]).unwrap();
-            out.push([t[m], t[(m + 1) % 3], t[(m + 2) % 3]]);
-        }
-    }
-    out.sort_unstable();
-    out
-}
-
-fn fan(mesh: &Mesh) -> Vec<[Vec3; 3]> {
-    let p = mesh.positions();
-    let mut out = Vec::new();
-    for f in 0..mesh.polygon_count() {
-        let poly = mesh.polygon(f);
-        for k in 1..poly.len() - 1 {
-            out.push([poly[0], poly[k], poly[k + 1]].map(|i| p[i as usize]));
-        }
-    }
-    out
 }
 
 /// Asserts an `Invalid` error whose message names `path` and contains `needle`.
@@ -504,13 +353,43 @@ fn ply_errors() {
     let path = write(dir.path(), "header.ply", &good[..header_end]);
     assert_invalid(load_ply(&path), &path, "header");
 
-    // Counts that lie: binary, by a lot (no allocation for them) and by a little.
-    let text =
-        String::from_utf8_lossy(&good[..header_end + 11]).replace("vertex 8", "vertex 4000000000");
-    let mut bytes = text.into_bytes();
-    bytes.extend_from_slice(&good[header_end + 11..]);
-    let path = write(dir.path(), "lie.ply", &bytes);
+    // Counts that lie: binary, by a lot (no allocation for them) and by a
+    // little; counts beyond the mesh ceilings fail before the size check.
+    let with_header = |from: &str, to: &str| {
+        let text = String::from_utf8_lossy(&good[..header_end + 11]).replace(from, to);
+        let mut bytes = text.into_bytes();
+        bytes.extend_from_slice(&good[header_end + 11..]);
+        bytes
+    };
+    let path = write(
+        dir.path(),
+        "lie.ply",
+        with_header("vertex 8", "vertex 40000000"),
+    );
     assert_invalid(load_ply(&path), &path, "promises");
+    let path = write(
+        dir.path(),
+        "absurd.ply",
+        with_header("vertex 8", "vertex 4000000000"),
+    );
+    assert_invalid(
+        load_ply(&path),
+        &path,
+        &format!(
+            "declares 4000000000 vertices; at most {} are supported",
+            Mesh::MAX_VERTICES
+        ),
+    );
+    let path = write(
+        dir.path(),
+        "absurd_faces.ply",
+        with_header("face 6", "face 16777217"),
+    );
+    assert_invalid(
+        load_ply(&path),
+        &path,
+        "declares 16777217 faces; at most 16777216 triangles",
+    );
     let path = write(dir.path(), "truncated.ply", &good[..good.len() - 100]);
     assert_invalid(load_ply(&path), &path, "promises");
     // Truncated inside the last face list (the minimum size still fits).
@@ -826,110 +705,176 @@ fn no_panic_on_mangled_files() {
     }
 }
 
-// ---------------------------------------------------------------- real models
-
-fn shared_models() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/models");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "note: {} is absent; skipping the real-model checks",
-            dir.display()
-        );
-        None
-    }
-}
-
-/// The mesh as one indexed triangle list in a GLB (fan triangulated).
-fn mesh_glb(mesh: &Mesh) -> Vec<u8> {
-    let p = mesh.positions();
-    let mut bin = f32_bytes(p.iter().flat_map(|v| v.to_array()));
-    let mut indices = Vec::new();
-    for f in 0..mesh.polygon_count() {
-        let poly = mesh.polygon(f);
-        for k in 1..poly.len() - 1 {
-            indices.extend([poly[0], poly[k], poly[k + 1]]);
-        }
-    }
-    let positions_len = bin.len();
-    bin.extend(indices.iter().flat_map(|i| i.to_le_bytes()));
-    let (lo, hi) = p.iter().fold(
-        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-        |(lo, hi), &v| (lo.min(v), hi.max(v)),
-    );
-    let json = format!(
-        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
-        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}}],
-        "buffers":[{{"byteLength":{}}}],
-        "bufferViews":[{{"buffer":0,"byteLength":{positions_len}}},{{"buffer":0,"byteOffset":{positions_len},"byteLength":{}}}],
-        "accessors":[{{"bufferView":0,"componentType":5126,"count":{},"type":"VEC3","min":{:?},"max":{:?}}},
-        {{"bufferView":1,"componentType":5125,"count":{},"type":"SCALAR"}}]}}"#,
-        bin.len(),
-        indices.len() * 4,
-        p.len(),
-        lo.to_array(),
-        hi.to_array(),
-        indices.len()
-    );
-    glb(&json, &bin)
-}
-
-fn render_scene(dir: &Path, model: &str) -> shadelab_core::Image {
-    let toml = format!(
-        "[model]\nsource = \"{model}\"\nnormals = \"angle\"\n[render]\nwidth = 128\nheight = 128\n"
-    );
-    let (scene, options) = SceneFile::parse(&toml, "test.toml")
-        .unwrap()
-        .resolve(dir)
-        .unwrap();
-    shadelab_core::render(&scene, &options).unwrap().0
-}
-
+/// The failure modes every loader must meet, one by one, each a typed error
+/// naming the file: empty, truncated, wrong magic, not UTF-8 where text is
+/// expected, over the size ceiling.
 #[test]
-fn real_models_round_trip_through_every_format() {
-    let Some(models) = shared_models() else {
-        return;
-    };
+fn every_loader_rejects_bad_bytes_with_a_typed_error() {
     let dir = tempfile::tempdir().unwrap();
-    for model in ["suzanne", "spot"] {
-        let obj_path = models.join(format!("{model}.obj"));
-        let obj = load_obj(&obj_path).unwrap();
-        let expected = triangle_set(&obj);
-
-        let stl = write(
-            dir.path(),
-            &format!("{model}.stl"),
-            binary_stl(b"solid", &fan(&obj)),
-        );
-        let ply_polys: Vec<Vec<u32>> = (0..obj.polygon_count())
-            .map(|f| obj.polygon(f).to_vec())
-            .collect();
-        let ply = write(
-            dir.path(),
-            &format!("{model}.ply"),
-            binary_ply(obj.positions(), &ply_polys, None, false),
-        );
-        let glb = write(dir.path(), &format!("{model}.glb"), mesh_glb(&obj));
-
-        for path in [&stl, &ply, &glb] {
-            let mesh = load_mesh(path).unwrap();
-            assert_eq!(triangle_set(&mesh), expected, "{}", path.display());
-        }
-        let ply_mesh = load_ply(&ply).unwrap();
-        assert_eq!(
-            ply_mesh.polygon_count(),
-            obj.polygon_count(),
-            "PLY keeps polygons"
-        );
-
-        std::fs::copy(&obj_path, dir.path().join(format!("{model}.obj"))).unwrap();
-        let from_obj = render_scene(dir.path(), &format!("{model}.obj"));
-        let from_ply = render_scene(dir.path(), &format!("{model}.ply"));
+    let (p, faces) = cube();
+    let polys: Vec<Vec<u32>> = faces.iter().map(|f| f.to_vec()).collect();
+    let buffer = tetra_buffer();
+    let gltf = tetra_doc(Some(&data_uri(&buffer)), TWO_NODES, "[0,2]").json();
+    let glb_bytes = glb(&tetra_doc(None, r#"[{"mesh":0}]"#, "[0]").json(), &buffer);
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        // Empty files.
+        ("empty.obj", vec![], "no faces"),
+        ("empty.stl", vec![], "too short"),
+        ("empty.ply", vec![], "not a PLY file"),
+        ("empty.gltf", vec![], "not a valid glTF"),
+        ("empty.glb", vec![], "not a valid glTF"),
+        // Truncated.
+        (
+            "cut.obj",
+            obj.as_bytes()[..obj.len() - 3].to_vec(),
+            "at least 3 vertices",
+        ),
+        (
+            "cut.ply",
+            binary_ply(&p, &polys, None, false)[..150].to_vec(),
+            "PLY header",
+        ),
+        (
+            "cut.gltf",
+            gltf.as_bytes()[..gltf.len() / 2].to_vec(),
+            "not a valid glTF",
+        ),
+        (
+            "cut.glb",
+            glb_bytes[..glb_bytes.len() - 8].to_vec(),
+            "not a valid glTF",
+        ),
+        // Wrong magic.
+        (
+            "magic.glb",
+            [b"glTX", &glb_bytes[4..]].concat(),
+            "not a valid glTF",
+        ),
+        ("magic.stl", vec![b'x'; 200], "not ascii stl"),
+        // Not UTF-8 where text is expected.
+        (
+            "latin1.obj",
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\n# caf\xe9\nf 1 2 3\n".to_vec(),
+            "not UTF-8",
+        ),
+        (
+            "latin1.stl",
+            b"solid caf\xe9\nfacet normal 0 0 0\nouter loop\nvertex \xff 0 0\n".to_vec(),
+            "ascii stl",
+        ),
+        (
+            "latin1.ply",
+            b"ply\nformat ascii 1.0\ncomment \xff\xfe\nend_header\n".to_vec(),
+            "ply",
+        ),
+        (
+            "latin1.gltf",
+            [b"{\"asset\":\xff".as_slice(), b"}"].concat(),
+            "not a valid glTF",
+        ),
+    ];
+    for (name, bytes, needle) in cases {
+        let path = write(dir.path(), name, &bytes);
+        let error = load_mesh(&path).expect_err(name);
         assert!(
-            from_obj.pixels().iter().any(|&c| c != from_obj.pixel(0, 0)),
-            "{model}: the render shows something"
+            matches!(error, LoadError::Invalid { .. } | LoadError::Syntax { .. }),
+            "{name}: {error:?}"
         );
-        assert!(from_obj == from_ply, "{model}: OBJ and PLY renders differ");
+        let shown = error.to_string();
+        assert!(shown.starts_with(&path.display().to_string()), "{shown}");
+        assert!(
+            shown.to_lowercase().contains(&needle.to_lowercase()),
+            "{name}: {shown:?} lacks {needle:?}"
+        );
     }
+    // Over the size ceiling, for the formats not checked above: sparse files,
+    // refused before reading.
+    for name in ["big.obj", "big.gltf"] {
+        let path = dir.path().join(name);
+        std::fs::File::create(&path)
+            .unwrap()
+            .set_len(MAX_MESH_BYTES + 1)
+            .unwrap();
+        assert!(
+            matches!(load_mesh(&path), Err(LoadError::TooLarge { ref path, .. }) if path.contains(name)),
+            "{name}"
+        );
+    }
+}
+
+/// An OBJ face with more corners than the triangle ceiling allows fails at
+/// its line, before its corners are gathered.
+#[test]
+fn obj_beyond_the_triangle_ceiling() {
+    let corners = Mesh::MAX_TRIANGLES + 3;
+    let mut text = String::with_capacity(2 * corners + 40);
+    text.push_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nf");
+    for _ in 0..corners {
+        text.push_str(" 1");
+    }
+    text.push('\n');
+    match shadelab_io::parse_obj(&text, "huge.obj") {
+        Err(LoadError::Syntax {
+            line: 4, message, ..
+        }) => {
+            assert!(
+                message.contains("more than 16777216 triangles"),
+                "{message}"
+            );
+        }
+        other => panic!("expected a syntax error at line 4, got {other:?}"),
+    }
+}
+
+/// A zero normal makes a file's normals unusable (they are computed, as for
+/// OBJ); a NaN normal is an error.
+#[test]
+fn zero_and_nan_file_normals() {
+    let dir = tempfile::tempdir().unwrap();
+    let (p, faces) = cube();
+    let polys: Vec<Vec<u32>> = faces.iter().map(|f| f.to_vec()).collect();
+    let mut normals: Vec<Vec3> = p.iter().map(|v| *v - Vec3::splat(0.5)).collect();
+    let path = write(
+        dir.path(),
+        "good.ply",
+        binary_ply(&p, &polys, Some(&normals), false),
+    );
+    assert!(load_ply(&path).unwrap().file_normals().is_some());
+    normals[3] = Vec3::ZERO;
+    let path = write(
+        dir.path(),
+        "zero.ply",
+        binary_ply(&p, &polys, Some(&normals), false),
+    );
+    let mesh = load_ply(&path).unwrap();
+    assert!(mesh.file_normals().is_none());
+    assert_eq!(mesh.polygon_count(), 6);
+    normals[3] = Vec3::new(0.0, f32::NAN, 1.0);
+    let path = write(
+        dir.path(),
+        "nan.ply",
+        binary_ply(&p, &polys, Some(&normals), true),
+    );
+    assert_invalid(load_ply(&path), &path, "normal 3");
+
+    // glTF: the tetrahedron with one normal zeroed, then NaN.
+    let mut buffer = tetra_buffer();
+    let normal_at = 4 * 12 + 12; // the second vertex's normal
+    buffer[normal_at..normal_at + 12].copy_from_slice(&f32_bytes([0.0, 0.0, 0.0]));
+    let one = r#"[{"mesh":0}]"#;
+    let path = write(
+        dir.path(),
+        "zero.glb",
+        glb(&tetra_doc(None, one, "[0]").json(), &buffer),
+    );
+    let mesh = load_gltf(&path).unwrap();
+    assert!(mesh.file_normals().is_none());
+    buffer[normal_at..normal_at + 12].copy_from_slice(&f32_bytes([0.0, f32::NAN, 0.0]));
+    let path = write(
+        dir.path(),
+        "nan.glb",
+        glb(&tetra_doc(None, one, "[0]").json(), &buffer),
+    );
+    assert_invalid(load_gltf(&path), &path, "normal 1");
 }
