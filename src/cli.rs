@@ -26,6 +26,8 @@ pub enum Command {
     Compare(CompareArgs),
     /// List the built-in models.
     Models,
+    /// Time the standard scenes: ms/frame, Mpixel/s, Mtriangles/s per model, size, method, rasterizer, threads.
+    Bench(crate::bench::BenchArgs),
 }
 
 /// `shadelab render`

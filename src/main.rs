@@ -4,6 +4,7 @@
 //! Exit codes: 0 on success; 2 for invalid input (arguments, scene file,
 //! model file, out-of-range values); 1 when the output cannot be written.
 
+mod bench;
 mod cli;
 mod label;
 
@@ -107,6 +108,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Compare(args) => compare(args.scene.as_deref(), &args.overrides, &args.output),
+        Command::Bench(args) => bench::run(&args).map_err(input_error),
         Command::Models => {
             let mut out = std::io::stdout().lock();
             let mut list = || -> std::io::Result<()> {
