@@ -135,6 +135,12 @@ pub(crate) trait Simd: Copy + Send + Sync {
     fn i_and(self, a: Self::I, b: Self::I) -> Self::I;
     fn i_or(self, a: Self::I, b: Self::I) -> Self::I;
     fn i_max(self, a: Self::I, b: Self::I) -> Self::I;
+    /// Wrapping multiplication (the low 32 bits of the product).
+    fn i_mul(self, a: Self::I, b: Self::I) -> Self::I;
+    /// All ones where `a > b`, signed.
+    fn i_gt(self, a: Self::I, b: Self::I) -> Self::I;
+    /// `i` in lane `i`.
+    fn i_lanes(self) -> Self::I;
     fn i_shl(self, a: Self::I, bits: u32) -> Self::I;
     fn i_sra(self, a: Self::I, bits: u32) -> Self::I;
     /// Lanes of `a` where `mask` is set, of `b` elsewhere.
@@ -279,6 +285,18 @@ impl Simd for Portable {
     #[inline(always)]
     fn i_max(self, a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
         lanes!(|i| a[i].max(b[i]))
+    }
+    #[inline(always)]
+    fn i_mul(self, a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        lanes!(|i| a[i].wrapping_mul(b[i]))
+    }
+    #[inline(always)]
+    fn i_gt(self, a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        lanes!(|i| -i32::from(a[i] > b[i]))
+    }
+    #[inline(always)]
+    fn i_lanes(self) -> [i32; 8] {
+        [0, 1, 2, 3, 4, 5, 6, 7]
     }
     #[inline(always)]
     fn i_shl(self, a: [i32; 8], bits: u32) -> [i32; 8] {
@@ -501,6 +519,21 @@ mod avx2 {
             unsafe { _mm256_max_epi32(a, b) }
         }
         #[inline(always)]
+        fn i_mul(self, a: __m256i, b: __m256i) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_mullo_epi32(a, b) }
+        }
+        #[inline(always)]
+        fn i_gt(self, a: __m256i, b: __m256i) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_cmpgt_epi32(a, b) }
+        }
+        #[inline(always)]
+        fn i_lanes(self) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7) }
+        }
+        #[inline(always)]
         fn i_shl(self, a: __m256i, bits: u32) -> __m256i {
             // SAFETY: see the impl.
             unsafe { _mm256_sll_epi32(a, _mm_cvtsi32_si128(bits as i32)) }
@@ -681,6 +714,21 @@ impl<S: Simd> Vi<S> {
     pub fn from_mask_bits(s: S, bits: u32) -> Self {
         Vi(s.i_from_bits(bits), s)
     }
+    /// 0, 1, … 7.
+    #[inline(always)]
+    pub fn ramp(s: S) -> Self {
+        Vi(s.i_lanes(), s)
+    }
+    /// All ones where `self > o`.
+    #[inline(always)]
+    pub fn gt(self, o: Self) -> Self {
+        Vi(self.1.i_gt(self.0, o.0), self.1)
+    }
+    /// All ones where `self < o`.
+    #[inline(always)]
+    pub fn lt(self, o: Self) -> Self {
+        Vi(self.1.i_gt(o.0, self.0), self.1)
+    }
     #[inline(always)]
     pub fn mask_bits(self) -> u32 {
         self.1.i_bits(self.0)
@@ -728,6 +776,7 @@ binary!(Vf, Sub, sub, f_sub);
 binary!(Vf, Mul, mul, f_mul);
 binary!(Vi, Add, add, i_add);
 binary!(Vi, Sub, sub, i_sub);
+binary!(Vi, Mul, mul, i_mul);
 binary!(Vi, BitAnd, bitand, i_and);
 binary!(Vi, BitOr, bitor, i_or);
 

@@ -20,7 +20,7 @@
 
 use glam::Vec3;
 
-use super::setup::{Plane, Triangle, BAND_ROWS};
+use super::setup::{plane_count, Plane, Triangle, Walk, BAND_ROWS};
 use crate::lighting::{LightKind, Lighting, Specular};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
 use crate::simd::{pow_unit, pow_whole, Simd, Vf, Vi};
@@ -153,12 +153,15 @@ fn power_scalar<S: Simd>(x: Vf<S>, p: f32) -> Vf<S> {
     Vf::load(x.1, &lanes)
 }
 
-/// `v / |v|`, or zero where `|v|` is zero or not finite (glam's `normalize_or_zero`).
+/// `v / |v|`. Where `|v|` is zero the lanes become NaN; `light` keeps
+/// those out of the colour exactly where glam's `normalize_or_zero` would
+/// give zero: a NaN `n·l` fails the `n·l > 0` test (unlit, as `n·l = 0`),
+/// and a NaN specular cosine is taken to 0 by `max(cos, 0)` (the second
+/// operand wins on NaN in both backends).
 #[inline(always)]
-fn normalize_or_zero<S: Simd>(v: [Vf<S>; 3]) -> [Vf<S>; 3] {
+fn normalize<S: Simd>(v: [Vf<S>; 3]) -> [Vf<S>; 3] {
     let len2 = v[0].mul_add(v[0], v[1].mul_add(v[1], v[2] * v[2]));
-    let ok = len2.gt(len2.splat_like(0.0)) & len2.lt(len2.splat_like(f32::INFINITY));
-    let scale = Vf::select(ok, len2.rsqrt(), len2.splat_like(0.0));
+    let scale = len2.rsqrt();
     [v[0] * scale, v[1] * scale, v[2] * scale]
 }
 
@@ -179,7 +182,7 @@ impl PhongShader {
     /// (normalized here), as packed colours.
     #[inline(always)]
     pub fn light<S: Simd>(&self, s: S, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        let n = normalize_or_zero([a[0], a[1], a[2]]);
+        let n = normalize([a[0], a[1], a[2]]);
         let p = [a[3], a[4], a[5]];
         let view = towards(s, self.eye, &p);
         let mut out = [
@@ -200,7 +203,7 @@ impl PhongShader {
             let n_dot_l = n[0].mul_add(l[0], n[1].mul_add(l[1], n[2] * l[2]));
             let lit = n_dot_l.gt(zero);
             let cosine = if self.blinn {
-                let h = normalize_or_zero([l[0] + view[0], l[1] + view[1], l[2] + view[2]]);
+                let h = normalize([l[0] + view[0], l[1] + view[1], l[2] + view[2]]);
                 n[0].mul_add(h[0], n[1].mul_add(h[1], n[2] * h[2]))
             } else {
                 let twice = n_dot_l * 2.0;
@@ -221,10 +224,10 @@ impl PhongShader {
     }
 }
 
-/// The unit vectors from points `p` towards `q` (zero where they coincide).
+/// The unit vectors from points `p` towards `q` (NaN where they coincide).
 #[inline(always)]
 fn towards<S: Simd>(s: S, q: Vec3, p: &[Vf<S>; 3]) -> [Vf<S>; 3] {
-    normalize_or_zero([
+    normalize([
         Vf::splat(s, q.x) - p[0],
         Vf::splat(s, q.y) - p[1],
         Vf::splat(s, q.z) - p[2],
@@ -358,8 +361,7 @@ impl Band {
         &mut self.stamp
     }
 
-    /// Draws one triangle's rows within this band (rows `band_y0..band_y1`
-    /// of an image `width` pixels wide).
+    /// Draws one triangle's rows within this band (rows `band_y0..band_y1`).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub fn draw<S: Simd, Sh: Shader>(
@@ -371,108 +373,169 @@ impl Band {
         interpolation: Interpolation,
         band_y0: u32,
         band_y1: u32,
-        width: u32,
         pass: Pass,
     ) {
-        let rows = (t.y0.max(band_y0 as i32))..(t.y1.min(band_y1 as i32));
-        let first_block = t.x0 & !7;
-        let block_count = (t.x1 - first_block + 7) / 8;
-        let lane_step = [
-            t.a[0] * SUBPIXEL_ONE,
-            t.a[1] * SUBPIXEL_ONE,
-            t.a[2] * SUBPIXEL_ONE,
-        ];
-        let lane_offsets = [
-            s.e_ramp(0, lane_step[0]),
-            s.e_ramp(0, lane_step[1]),
-            s.e_ramp(0, lane_step[2]),
-        ];
-        let block_step = [lane_step[0] * 8, lane_step[1] * 8, lane_step[2] * 8];
-        let x_start = i64::from(first_block) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-        // The lanes of a row's last block that lie inside the image.
-        let last_block_x = first_block + (block_count - 1) * 8;
-        let last_block_bits = if last_block_x + 8 > width as i32 {
-            (1u32 << (width as i32 - last_block_x)) - 1
-        } else {
-            0xff
-        };
-        let plane_count = 2 + Sh::ATTRS;
-        let lanes_x = Vf::lanes(s) + Vf::splat(s, (first_block - t.x0) as f32);
+        let rows = t.y0.max(band_y0 as i32)..t.y1.min(band_y1 as i32);
+        if rows.is_empty() {
+            return;
+        }
         let mut dx = [Vf::splat(s, 0.0); 2 + MAX_ATTRS];
-        for j in 0..plane_count {
+        for j in 0..plane_count(Sh::ATTRS) {
             dx[j] = Vf::splat(s, planes[j].dx);
         }
+        let fill = Fill {
+            t,
+            planes,
+            shader,
+            interpolation,
+            pass,
+            dx,
+            lanes: Vf::lanes(s),
+        };
+        match t.walk {
+            Walk::Blocks => self.walk_blocks(s, &fill, rows, band_y0),
+            Walk::Spans => self.walk_spans(s, &fill, rows, band_y0),
+        }
+    }
 
+    /// Blocks of 8 pixels along each row of the bounding box, with the edge
+    /// functions in `i32` lanes: one add per edge per block, no multiply.
+    #[inline(always)]
+    fn walk_blocks<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        rows: std::ops::Range<i32>,
+        band_y0: u32,
+    ) {
+        let t = f.t;
+        let first_block = t.x0 & !7;
+        let block_count = (t.x1 - first_block + 7) / 8;
+        let x_start = i64::from(first_block) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let y_start = i64::from(rows.start) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let lane_index = Vi::ramp(s);
+        let mut row_e = [Vi::splat(s, 0); 3];
+        let mut block_step = [Vi::splat(s, 0); 3];
+        let mut row_step = [Vi::splat(s, 0); 3];
+        for i in 0..3 {
+            // `Triangle::edges` checked that these stay within i32 over the box.
+            let at_start = i64::from(t.a[i]) * x_start + i64::from(t.b[i]) * y_start + t.c[i];
+            let a = t.a[i] * SUBPIXEL_ONE as i32;
+            row_e[i] = Vi::splat(s, at_start as i32) + lane_index * Vi::splat(s, a);
+            block_step[i] = Vi::splat(s, a * 8);
+            row_step[i] = Vi::splat(s, t.b[i] * SUBPIXEL_ONE as i32);
+        }
+        // Lanes of the last block past the box (and so maybe past the image).
+        let last_lanes = lane_index.lt(Vi::splat(s, t.x1 - (first_block + (block_count - 1) * 8)));
+        let minus_one = Vi::splat(s, -1);
         for y in rows {
-            let y_centre = i64::from(y) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-            let mut e = [0i64; 3];
-            for i in 0..3 {
-                e[i] = t.a[i] * x_start + t.b[i] * y_centre + t.c[i];
-            }
-            let dy = (y - t.y0) as f32;
-            let mut row_value = [0f32; 2 + MAX_ATTRS];
-            for j in 0..plane_count {
-                row_value[j] = planes[j].at_origin + planes[j].dy * dy;
-            }
             let row_start = (y as u32 - band_y0) as usize * self.stride;
+            let row = f.row_values(y);
+            let mut e = row_e;
             for block in 0..block_count {
-                let mut bits = s.e_inside(
-                    s.e_add(lane_offsets[0], e[0]),
-                    s.e_add(lane_offsets[1], e[1]),
-                    s.e_add(lane_offsets[2], e[2]),
-                );
+                let mut inside = (e[0] | e[1] | e[2]).gt(minus_one);
                 for i in 0..3 {
-                    e[i] += block_step[i];
+                    e[i] = e[i] + block_step[i];
                 }
                 if block == block_count - 1 {
-                    bits &= last_block_bits;
+                    inside = inside & last_lanes;
                 }
-                if bits == 0 {
-                    continue;
+                if inside.mask_bits() != 0 {
+                    let x = first_block + block * 8;
+                    self.block(s, f, inside, row_start + x as usize, x, &row);
                 }
-                let at = row_start + (first_block + block * 8) as usize;
-                if t.once != 0 {
-                    bits = self.once_per_pixel(bits, at, t.once);
-                }
-                if pass == Pass::Count {
-                    for (i, count) in self.counts[at..at + 8].iter_mut().enumerate() {
-                        *count += (bits >> i) & 1;
-                    }
-                    continue;
-                }
-                let x = lanes_x + Vf::splat(s, (block * 8) as f32);
-                let depth = x.mul_add(dx[0], Vf::splat(s, row_value[0]));
-                let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
-                let stored = Vf::load(s, depth_slot);
-                let bits = bits & depth.lt(stored).mask_bits();
-                if bits == 0 {
-                    continue;
-                }
-                let mask = Vi::from_mask_bits(s, bits);
-                Vf::select(mask, depth, stored).store(depth_slot);
-                self.fragments += u64::from(bits.count_ones());
-
-                let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
-                match interpolation {
-                    Interpolation::Perspective if Sh::ATTRS > 0 => {
-                        let inv_w = x.mul_add(dx[1], Vf::splat(s, row_value[1]));
-                        let w = inv_w.recip();
-                        for k in 0..Sh::ATTRS {
-                            attrs[k] = x.mul_add(dx[2 + k], Vf::splat(s, row_value[2 + k])) * w;
-                        }
-                    }
-                    _ => {
-                        for k in 0..Sh::ATTRS {
-                            attrs[k] = x.mul_add(dx[2 + k], Vf::splat(s, row_value[2 + k]));
-                        }
-                    }
-                }
-                let colors = shader.shade(s, t, &attrs);
-                let color_slot: &mut [i32; 8] = (&mut self.color[at..at + 8]).try_into().unwrap();
-                let old = Vi(s.i_load(color_slot), s);
-                s.i_store(Vi::select(mask, colors, old).0, color_slot);
+            }
+            for i in 0..3 {
+                row_e[i] = row_e[i] + row_step[i];
             }
         }
+    }
+
+    /// Each row's covered span `[left, right)`, found exactly per edge, then
+    /// filled in blocks of 8 with no edge arithmetic per pixel.
+    #[inline(always)]
+    fn walk_spans<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        rows: std::ops::Range<i32>,
+        band_y0: u32,
+    ) {
+        let t = f.t;
+        let lane_index = Vi::ramp(s);
+        for y in rows {
+            let Some((left, right)) = span(t, y) else {
+                continue;
+            };
+            let row_start = (y as u32 - band_y0) as usize * self.stride;
+            let row = f.row_values(y);
+            let (from, to) = (Vi::splat(s, left - 1), Vi::splat(s, right));
+            let mut x = left & !7;
+            while x < right {
+                let lanes = lane_index + Vi::splat(s, x);
+                let inside = lanes.gt(from) & to.gt(lanes);
+                self.block(s, f, inside, row_start + x as usize, x, &row);
+                x += 8;
+            }
+        }
+    }
+
+    /// Depth-tests, shades and writes the lanes of `inside` in the block at
+    /// column `x` (buffer index `at`); `row` holds the planes' values at the
+    /// start of this row.
+    #[inline(always)]
+    fn block<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        inside: Vi<S>,
+        at: usize,
+        x: i32,
+        row: &[f32; 2 + MAX_ATTRS],
+    ) {
+        let mut inside = inside;
+        if f.t.once != 0 {
+            let bits = self.once_per_pixel(inside.mask_bits(), at, f.t.once);
+            inside = Vi::from_mask_bits(s, bits);
+        }
+        if f.pass == Pass::Count {
+            let bits = inside.mask_bits();
+            for (i, count) in self.counts[at..at + 8].iter_mut().enumerate() {
+                *count += (bits >> i) & 1;
+            }
+            return;
+        }
+        let x = f.lanes + Vf::splat(s, (x - f.t.x0) as f32);
+        let depth = x.mul_add(f.dx[0], Vf::splat(s, row[0]));
+        let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
+        let stored = Vf::load(s, depth_slot);
+        let pass = inside & depth.lt(stored);
+        let bits = pass.mask_bits();
+        if bits == 0 {
+            return;
+        }
+        Vf::select(pass, depth, stored).store(depth_slot);
+        self.fragments += u64::from(bits.count_ones());
+
+        let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
+        match f.interpolation {
+            Interpolation::Perspective if Sh::ATTRS > 0 => {
+                let inv_w = x.mul_add(f.dx[1], Vf::splat(s, row[1]));
+                let w = inv_w.recip();
+                for k in 0..Sh::ATTRS {
+                    attrs[k] = x.mul_add(f.dx[2 + k], Vf::splat(s, row[2 + k])) * w;
+                }
+            }
+            _ => {
+                for k in 0..Sh::ATTRS {
+                    attrs[k] = x.mul_add(f.dx[2 + k], Vf::splat(s, row[2 + k]));
+                }
+            }
+        }
+        let colors = f.shader.shade(s, f.t, &attrs);
+        let color_slot: &mut [i32; 8] = (&mut self.color[at..at + 8]).try_into().unwrap();
+        let old = Vi(s.i_load(color_slot), s);
+        s.i_store(Vi::select(pass, colors, old).0, color_slot);
     }
 
     /// Drops the lanes a self-crossing polygon already drew, and marks the rest.
@@ -491,6 +554,82 @@ impl Band {
         }
         out
     }
+}
+
+/// What every block of one triangle needs.
+struct Fill<'a, S: Simd, Sh> {
+    t: &'a Triangle,
+    planes: &'a [Plane],
+    shader: &'a Sh,
+    interpolation: Interpolation,
+    pass: Pass,
+    /// Each plane's step per pixel along x, in all lanes.
+    dx: [Vf<S>; 2 + MAX_ATTRS],
+    /// 0, 1, … 7.
+    lanes: Vf<S>,
+}
+
+impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
+    /// The planes' values at the triangle's first column on row `y`.
+    #[inline(always)]
+    fn row_values(&self, y: i32) -> [f32; 2 + MAX_ATTRS] {
+        let dy = (y - self.t.y0) as f32;
+        let mut row = [0f32; 2 + MAX_ATTRS];
+        for j in 0..plane_count(Sh::ATTRS) {
+            row[j] = self.planes[j].at_origin + self.planes[j].dy * dy;
+        }
+        row
+    }
+}
+
+/// The columns `[left, right)` of row `y` whose centres are inside the
+/// triangle, within its bounding box; `None` when there are none.
+///
+/// Per edge, the test `a·(256·X + 128) + r ≥ 0` (with `r = b·y_s + c`) is
+/// monotonic in the column X: the boundary is estimated with one `f64`
+/// multiplication by a reciprocal and then settled by evaluating the exact
+/// integer test at the estimate and its neighbour. The estimate is first
+/// clamped next to the box, where it is within one column of the truth.
+#[inline(always)]
+fn span(t: &Triangle, y: i32) -> Option<(i32, i32)> {
+    let y_s = i64::from(y) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+    let (mut left, mut right) = (i64::from(t.x0), i64::from(t.x1));
+    for i in 0..3 {
+        let a = i64::from(t.a[i]);
+        let r = i64::from(t.b[i]) * y_s + t.c[i];
+        let inside = |x: i64| a * (x * SUBPIXEL_ONE + SUBPIXEL_HALF) + r >= 0;
+        if a == 0 {
+            if r < 0 {
+                return None;
+            }
+            continue;
+        }
+        // Boundary column: a·(256·X + 128) + r = 0.
+        let estimate = (-(r + a * SUBPIXEL_HALF) as f64) / ((a * SUBPIXEL_ONE) as f64);
+        if a > 0 {
+            // Inside from the first X with the test true.
+            let mut x = (estimate.ceil() as i64).clamp(left - 1, right + 1);
+            if !inside(x) {
+                x += 1;
+            } else if inside(x - 1) {
+                x -= 1;
+            }
+            left = left.max(x);
+        } else {
+            // Inside up to the last X with the test true.
+            let mut x = (estimate.floor() as i64).clamp(left - 1, right + 1);
+            if !inside(x) {
+                x -= 1;
+            } else if inside(x + 1) {
+                x += 1;
+            }
+            right = right.min(x + 1);
+        }
+        if left >= right {
+            return None;
+        }
+    }
+    Some((left as i32, right as i32))
 }
 
 /// Rows `y0..y1` of the image: the band with index `band`.

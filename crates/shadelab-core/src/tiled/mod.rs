@@ -34,7 +34,7 @@ use rayon::prelude::*;
 use self::band::{
     band_rows, Band, FlatShader, GouraudShader, Pass, PhongShader, Shader, MAX_ATTRS,
 };
-use self::setup::{Plane, Triangle, BAND_ROWS};
+use self::setup::{plane_count, Plane, Triangle, BAND_ROWS};
 use crate::clip::{clip_polygon, is_inside, ClipVertex};
 use crate::color::Rgb8;
 use crate::image::Image;
@@ -80,13 +80,19 @@ impl Projected {
     }
 }
 
+/// The triangles of one chunk that touch one band, in submission order,
+/// copied here so that the band reads them as one contiguous stream.
+#[derive(Debug, Default)]
+struct Bin {
+    triangles: Vec<Triangle>,
+    /// `plane_count` planes per triangle.
+    planes: Vec<Plane>,
+}
+
 /// Consecutive polygons set up by one task, with their per-band bins.
 #[derive(Debug, Default)]
 struct Chunk {
-    triangles: Vec<Triangle>,
-    planes: Vec<Plane>,
-    /// Per band, indices into `triangles`, in submission order.
-    bins: Vec<Vec<u32>>,
+    bins: Vec<Bin>,
     stats: RenderStats,
     input: Vec<ClipVertex<MAX_ATTRS>>,
     clipped: Vec<ClipVertex<MAX_ATTRS>>,
@@ -271,100 +277,176 @@ impl Chunk {
 
     /// Sets up polygons `faces` and bins their triangles.
     fn setup(&mut self, frame: &Frame<'_>, faces: std::ops::Range<usize>) {
-        self.triangles.clear();
-        self.planes.clear();
-        self.bins.resize_with(frame.bands, Vec::new);
+        self.bins.resize_with(frame.bands, Bin::default);
         self.bins.truncate(frame.bands);
-        self.bins.iter_mut().for_each(Vec::clear);
+        for bin in &mut self.bins {
+            bin.triangles.clear();
+            bin.planes.clear();
+        }
         self.stats = RenderStats::default();
-        let options = frame.options;
-        let mesh = &frame.scene.mesh;
-        let attrs = frame.attr_count();
         self.flat_surfaces.clear();
+        let mesh = &frame.scene.mesh;
         for face in faces {
             let Some(normal) = frame.faces[face] else {
                 self.stats.degenerate += 1;
                 continue;
             };
-            // Facing first, from the projected positions when no clipping is
-            // needed, so that culled polygons cost no attribute work.
-            let corners = &mesh.corners()[mesh.corner_range(face)];
-            let unclipped = corners
-                .iter()
-                .all(|&p| frame.projected[p as usize].inside());
-            let area = if unclipped {
-                window_area(frame.projected, corners)
-            } else {
-                self.project(frame, face, false);
-                if self.window.len() < 3 {
-                    0
-                } else {
-                    signed_area_ccw(&self.window)
+            let range = mesh.corner_range(face);
+            let corners = &mesh.corners()[range.clone()];
+            if let &[i0, i1, i2] = corners {
+                let p = [i0, i1, i2].map(|i| frame.projected[i as usize]);
+                if p.iter().all(Projected::inside) {
+                    match self.setup_triangle(frame, face, range.start, &p, normal) {
+                        Some(()) => continue,
+                        None => {} // a back face drawn with culling off
+                    }
                 }
-            };
-            if area == 0 {
-                self.stats.invisible += 1;
-                continue;
             }
-            let back = area < 0;
-            if back && options.cull_backfaces {
-                self.stats.culled += 1;
-                continue;
-            }
-            if back || unclipped {
-                self.project(frame, face, back);
-            }
-            if back {
-                self.window.reverse();
-            }
-            self.stats.rasterized += 1;
-            let color = if options.shading == Shading::Flat {
-                let polygon = mesh.polygon(face);
-                let centroid = polygon
-                    .iter()
-                    .map(|&i| mesh.positions()[i as usize])
-                    .sum::<Vec3>()
-                    / polygon.len() as f32;
-                let n = if back { -normal } else { normal };
-                let p = centroid;
-                self.flat_surfaces.push([n.x, n.y, n.z, p.x, p.y, p.z]);
-                (self.flat_surfaces.len() - 1) as u32
-            } else {
-                0
-            };
-            let fan = fan(&self.window);
-            let once = if fan.once_per_pixel {
-                face as u32 + 1
-            } else {
-                0
-            };
-            for triangle in fan.triangles(&self.window) {
-                if signed_area_ccw(&triangle) <= 0 {
-                    continue;
-                }
-                let Some(mut t) = Triangle::new(
-                    &triangle,
-                    attrs,
-                    options.width,
-                    options.height,
-                    options.interpolation,
-                    &mut self.planes,
-                ) else {
-                    continue;
-                };
-                t.color = color;
-                t.flip = if back { -1.0 } else { 1.0 };
-                t.once = once;
-                let index = self.triangles.len() as u32;
-                for band in t.bands() {
-                    self.bins[band].push(index);
-                }
-                self.triangles.push(t);
-            }
+            self.setup_polygon(frame, face, normal);
         }
-        if options.shading == Shading::Flat {
+        if frame.options.shading == Shading::Flat {
             self.light_flat_polygons(frame);
         }
+    }
+
+    /// The common case: a triangle whose corners are all inside the view
+    /// volume, set up straight from the projected positions. `None` when it
+    /// is a back face to be drawn (culling off), left to `setup_polygon`.
+    #[inline(always)]
+    fn setup_triangle(
+        &mut self,
+        frame: &Frame<'_>,
+        face: usize,
+        first_corner: usize,
+        p: &[Projected; 3],
+        normal: Vec3,
+    ) -> Option<()> {
+        let options = frame.options;
+        let x = p.map(|p| i64::from(p.x));
+        let y = p.map(|p| i64::from(p.y));
+        // As `signed_area_ccw`; snapped coordinates within ±2^29 keep it in i64.
+        let area = (x[2] - x[0]) * (y[1] - y[0]) - (x[1] - x[0]) * (y[2] - y[0]);
+        if area == 0 {
+            self.stats.invisible += 1;
+            return Some(());
+        }
+        if area < 0 {
+            if options.cull_backfaces {
+                self.stats.culled += 1;
+                return Some(());
+            }
+            return None;
+        }
+        self.stats.rasterized += 1;
+        let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
+            return Some(());
+        };
+        let attrs = frame.attr_count();
+        let v: [ScreenVertex<MAX_ATTRS>; 3] = std::array::from_fn(|k| ScreenVertex {
+            x: x[k],
+            y: y[k],
+            depth: p[k].depth,
+            inv_w: p[k].inv_w,
+            attrs: frame.corner_attrs(first_corner + k, false),
+        });
+        let planes = t.planes(&v, attrs, options.interpolation);
+        if options.shading == Shading::Flat {
+            t.color = self.flat_surface(frame, face, normal, false);
+        }
+        self.bin(&t, &planes[..plane_count(attrs)]);
+        Some(())
+    }
+
+    /// Queues a polygon for flat lighting; returns its index.
+    fn flat_surface(&mut self, frame: &Frame<'_>, face: usize, normal: Vec3, back: bool) -> u32 {
+        let mesh = &frame.scene.mesh;
+        let polygon = mesh.polygon(face);
+        let centroid = polygon
+            .iter()
+            .map(|&i| mesh.positions()[i as usize])
+            .sum::<Vec3>()
+            / polygon.len() as f32;
+        let n = if back { -normal } else { normal };
+        let p = centroid;
+        self.flat_surfaces.push([n.x, n.y, n.z, p.x, p.y, p.z]);
+        (self.flat_surfaces.len() - 1) as u32
+    }
+
+    /// Adds a set-up triangle to the bins of the bands it touches.
+    #[inline(always)]
+    fn bin(&mut self, t: &Triangle, planes: &[Plane]) {
+        for band in t.bands() {
+            let bin = &mut self.bins[band];
+            bin.triangles.push(*t);
+            bin.planes.extend_from_slice(planes);
+        }
+    }
+
+    /// Any polygon: clipped if needed, faced, split into the fan both
+    /// rasterizers use.
+    fn setup_polygon(&mut self, frame: &Frame<'_>, face: usize, normal: Vec3) {
+        let options = frame.options;
+        let mesh = &frame.scene.mesh;
+        let attrs = frame.attr_count();
+        // Facing first, from the projected positions when no clipping is
+        // needed, so that culled polygons cost no attribute work.
+        let corners = &mesh.corners()[mesh.corner_range(face)];
+        let unclipped = corners
+            .iter()
+            .all(|&p| frame.projected[p as usize].inside());
+        let area = if unclipped {
+            window_area(frame.projected, corners)
+        } else {
+            self.project(frame, face, false);
+            if self.window.len() < 3 {
+                0
+            } else {
+                signed_area_ccw(&self.window)
+            }
+        };
+        if area == 0 {
+            self.stats.invisible += 1;
+            return;
+        }
+        let back = area < 0;
+        if back && options.cull_backfaces {
+            self.stats.culled += 1;
+            return;
+        }
+        if back || unclipped {
+            self.project(frame, face, back);
+        }
+        if back {
+            self.window.reverse();
+        }
+        self.stats.rasterized += 1;
+        let color = if options.shading == Shading::Flat {
+            self.flat_surface(frame, face, normal, back)
+        } else {
+            0
+        };
+        let fan = fan(&self.window);
+        let once = if fan.once_per_pixel {
+            face as u32 + 1
+        } else {
+            0
+        };
+        let window = std::mem::take(&mut self.window);
+        for triangle in fan.triangles(&window) {
+            if signed_area_ccw(&triangle) <= 0 {
+                continue;
+            }
+            let (x, y) = (triangle.map(|v| v.x), triangle.map(|v| v.y));
+            let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
+                continue;
+            };
+            let planes = t.planes(&triangle, attrs, options.interpolation);
+            t.color = color;
+            t.flip = if back { -1.0 } else { 1.0 };
+            t.once = once;
+            self.bin(&t, &planes[..plane_count(attrs)]);
+        }
+        self.window = window;
     }
 
     /// Lights the front polygons of flat shading, 8 at a time, and gives
@@ -380,8 +462,10 @@ impl Chunk {
             shader: frame.phong,
         };
         dispatch(frame.simd, kernel);
-        for t in &mut self.triangles {
-            t.color = self.flat_colors[t.color as usize] as u32;
+        for bin in &mut self.bins {
+            for t in &mut bin.triangles {
+                t.color = self.flat_colors[t.color as usize] as u32;
+            }
         }
     }
 }
@@ -455,19 +539,18 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             Output::Counts(_) => Pass::Count,
         };
         self.band.begin(o.width, y1 - y0, pass);
-        let stride = 2 + S::ATTRS;
+        let stride = plane_count(S::ATTRS);
         for chunk in self.chunks {
-            for &t in &chunk.bins[self.index] {
-                let t = t as usize;
+            let bin = &chunk.bins[self.index];
+            for (t, planes) in bin.triangles.iter().zip(bin.planes.chunks_exact(stride)) {
                 self.band.draw(
                     simd,
-                    &chunk.triangles[t],
-                    &chunk.planes[t * stride..(t + 1) * stride],
+                    t,
+                    planes,
                     self.shader,
                     o.interpolation,
                     y0,
                     y1,
-                    o.width,
                     pass,
                 );
             }
