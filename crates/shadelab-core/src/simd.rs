@@ -37,7 +37,7 @@ impl SimdLevel {
     pub fn detect() -> SimdLevel {
         #[cfg(target_arch = "x86_64")]
         {
-            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+            if avx2::Avx2::new().is_some() {
                 return SimdLevel::Avx2;
             }
         }
@@ -74,14 +74,15 @@ pub(crate) trait Kernel {
 pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, kernel: K) -> K::Output {
     #[cfg(target_arch = "x86_64")]
     {
-        #[target_feature(enable = "avx2,fma")]
+        #[target_feature(enable = "avx2,fma,popcnt,bmi1,bmi2")]
         unsafe fn with_avx2<K: Kernel>(kernel: K, simd: avx2::Avx2) -> K::Output {
             kernel.run(simd)
         }
         if level == SimdLevel::Avx2 {
             if let Some(simd) = avx2::Avx2::new() {
-                // SAFETY: `Avx2::new` succeeded, so the CPU has AVX2 and FMA,
-                // the only requirement of a `target_feature` function.
+                // SAFETY: `Avx2::new` succeeded, so the CPU has AVX2, FMA,
+                // POPCNT, BMI1 and BMI2, the only requirement of a
+                // `target_feature` function.
                 return unsafe { with_avx2(kernel, simd) };
             }
         }
@@ -152,6 +153,12 @@ pub(crate) trait Simd: Copy + Send + Sync {
     /// A mask from bits 0..8.
     fn i_from_bits(self, bits: u32) -> Self::I;
 
+    /// The lanes whose bit is set in `bits` (0..256), moved to the front
+    /// in order; the other lanes are unspecified.
+    fn f_compress(self, v: Self::F, bits: u32) -> Self::F;
+    /// As [`Simd::f_compress`], for `i32` lanes.
+    fn i_compress(self, v: Self::I, bits: u32) -> Self::I;
+
     /// The low three bytes of each lane, packed: 8 RGB pixels.
     fn i_store_rgb(self, v: Self::I, dst: &mut [u8; 24]);
 
@@ -161,6 +168,25 @@ pub(crate) trait Simd: Copy + Send + Sync {
     /// Bits 0..8 of the lanes where all three are non-negative.
     fn e_inside(self, a: Self::E, b: Self::E, c: Self::E) -> u32;
 }
+
+/// For each 8-bit mask, the indices of its set lanes in order, then zeros:
+/// the permutation that packs the selected lanes to the front.
+const COMPRESS: [[i32; 8]; 256] = {
+    let mut table = [[0i32; 8]; 256];
+    let mut mask = 0;
+    while mask < 256 {
+        let (mut lane, mut k) = (0, 0);
+        while lane < 8 {
+            if (mask >> lane) & 1 == 1 {
+                table[mask][k] = lane as i32;
+                k += 1;
+            }
+            lane += 1;
+        }
+        mask += 1;
+    }
+    table
+};
 
 /// The portable backend: arrays and loops.
 #[derive(Debug, Clone, Copy)]
@@ -328,6 +354,17 @@ impl Simd for Portable {
     }
 
     #[inline(always)]
+    fn f_compress(self, v: [f32; 8], bits: u32) -> [f32; 8] {
+        let order = &COMPRESS[bits as usize & 255];
+        lanes!(|i| v[order[i] as usize])
+    }
+    #[inline(always)]
+    fn i_compress(self, v: [i32; 8], bits: u32) -> [i32; 8] {
+        let order = &COMPRESS[bits as usize & 255];
+        lanes!(|i| v[order[i] as usize])
+    }
+
+    #[inline(always)]
     fn i_store_rgb(self, v: [i32; 8], dst: &mut [u8; 24]) {
         for (i, pixel) in dst.chunks_exact_mut(3).enumerate() {
             pixel.copy_from_slice(&v[i].to_le_bytes()[..3]);
@@ -354,14 +391,19 @@ mod avx2 {
 
     use super::Simd;
 
-    /// The AVX2 backend; a value proves the CPU has AVX2 and FMA.
+    /// The AVX2 backend; a value proves the CPU has AVX2 and FMA (and
+    /// POPCNT, BMI1 and BMI2, which every AVX2 processor has).
     #[derive(Debug, Clone, Copy)]
     pub(crate) struct Avx2(());
 
     impl Avx2 {
         pub fn new() -> Option<Avx2> {
-            (std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma"))
-                .then_some(Avx2(()))
+            (std::is_x86_feature_detected!("avx2")
+                && std::is_x86_feature_detected!("fma")
+                && std::is_x86_feature_detected!("popcnt")
+                && std::is_x86_feature_detected!("bmi1")
+                && std::is_x86_feature_detected!("bmi2"))
+            .then_some(Avx2(()))
         }
     }
 
@@ -574,6 +616,19 @@ mod avx2 {
         }
 
         #[inline(always)]
+        fn f_compress(self, v: __m256, bits: u32) -> __m256 {
+            let order = &super::COMPRESS[bits as usize & 255];
+            // SAFETY: see the impl; `order` is 8 lanes.
+            unsafe { _mm256_permutevar8x32_ps(v, _mm256_loadu_si256(order.as_ptr().cast())) }
+        }
+        #[inline(always)]
+        fn i_compress(self, v: __m256i, bits: u32) -> __m256i {
+            let order = &super::COMPRESS[bits as usize & 255];
+            // SAFETY: see the impl; `order` is 8 lanes.
+            unsafe { _mm256_permutevar8x32_epi32(v, _mm256_loadu_si256(order.as_ptr().cast())) }
+        }
+
+        #[inline(always)]
         fn i_store_rgb(self, v: __m256i, dst: &mut [u8; 24]) {
             // SAFETY: see the impl; the first store writes bytes 0..16, the
             // second and third 12..20 and 20..24, all within `dst`.
@@ -694,6 +749,11 @@ impl<S: Simd> Vf<S> {
     pub fn select(mask: Vi<S>, yes: Self, no: Self) -> Self {
         Vf(yes.1.f_select(mask.0, yes.0, no.0), yes.1)
     }
+    /// The lanes set in `bits`, packed to the front.
+    #[inline(always)]
+    pub fn compress(self, bits: u32) -> Self {
+        Vf(self.1.f_compress(self.0, bits), self.1)
+    }
     /// Truncates towards zero; lanes must lie within ±2^31.
     #[inline(always)]
     pub fn to_i(self) -> Vi<S> {
@@ -728,6 +788,11 @@ impl<S: Simd> Vi<S> {
     #[inline(always)]
     pub fn lt(self, o: Self) -> Self {
         Vi(self.1.i_gt(o.0, self.0), self.1)
+    }
+    /// The lanes set in `bits`, packed to the front.
+    #[inline(always)]
+    pub fn compress(self, bits: u32) -> Self {
+        Vi(self.1.i_compress(self.0, bits), self.1)
     }
     #[inline(always)]
     pub fn mask_bits(self) -> u32 {
@@ -788,21 +853,24 @@ impl<S: Simd> Mul<f32> for Vf<S> {
     }
 }
 
-/// `x^p` for a whole exponent `p` in 1..=1024, by repeated squaring
-/// (at most 19 multiplications, exact to a few ulps).
+/// `x^p` for a whole exponent `p` in 1..=1024: with `p = m·2^k`, `m` odd,
+/// `x^m` by repeated squaring, then `k` squarings (for the usual powers of
+/// two no other multiplication; at most 19 in all, exact to a few ulps).
 #[inline(always)]
 pub(crate) fn pow_whole<S: Simd>(x: Vf<S>, p: u32) -> Vf<S> {
-    let mut result = x.splat_like(1.0);
+    let k = p.trailing_zeros();
+    let mut m = p >> k >> 1;
+    let mut result = x;
     let mut base = x;
-    let mut e = p;
-    while e > 0 {
-        if e & 1 == 1 {
+    while m > 0 {
+        base = base * base;
+        if m & 1 == 1 {
             result = result * base;
         }
-        e >>= 1;
-        if e > 0 {
-            base = base * base;
-        }
+        m >>= 1;
+    }
+    for _ in 0..k {
+        result = result * result;
     }
     result
 }

@@ -18,233 +18,10 @@
 // Loops over the three edges, channels and planes index several arrays at once.
 #![allow(clippy::needless_range_loop)]
 
-use glam::Vec3;
-
 use super::setup::{plane_count, Plane, Triangle, Walk, BAND_ROWS};
-use crate::lighting::{LightKind, Lighting, Specular};
+use super::shade::{Shader, MAX_ATTRS};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
-use crate::simd::{pow_unit, pow_whole, Simd, Vf, Vi};
-
-/// The most attributes a method interpolates (Phong: normal and position).
-pub(crate) const MAX_ATTRS: usize = 6;
-
-/// Per-method colouring of a block of fragments.
-pub(crate) trait Shader: Sync {
-    /// How many attributes the method interpolates.
-    const ATTRS: usize;
-    /// Colours of 8 fragments, packed `r | g << 8 | b << 16`.
-    fn shade<S: Simd>(&self, s: S, triangle: &Triangle, attrs: &[Vf<S>; MAX_ATTRS]) -> Vi<S>;
-}
-
-/// Flat shading: the triangle's polygon was lit once, at setup.
-pub(crate) struct FlatShader;
-
-impl Shader for FlatShader {
-    const ATTRS: usize = 0;
-    #[inline(always)]
-    fn shade<S: Simd>(&self, s: S, triangle: &Triangle, _: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        Vi::splat(s, triangle.color as i32)
-    }
-}
-
-/// Gouraud shading: the vertex colours, interpolated.
-pub(crate) struct GouraudShader;
-
-impl Shader for GouraudShader {
-    const ATTRS: usize = 3;
-    #[inline(always)]
-    fn shade<S: Simd>(&self, _: S, _: &Triangle, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        pack(a[0], a[1], a[2])
-    }
-}
-
-/// One light, prepared for 8 lanes.
-#[derive(Debug, Clone, Copy)]
-struct LaneLight {
-    /// Point light position, or `None` for a directional light.
-    position: Option<Vec3>,
-    /// Unit vector towards a directional light.
-    towards: Vec3,
-    /// `Id·Kd` per channel.
-    diffuse: [f32; 3],
-    /// `Is·Ks` per channel.
-    specular: [f32; 3],
-}
-
-/// Phong shading: the reflection model per pixel, as [`Lighting::eval`].
-pub(crate) struct PhongShader {
-    ambient: [f32; 3],
-    eye: Vec3,
-    lights: Vec<LaneLight>,
-    shininess: f32,
-    power: Power,
-    blinn: bool,
-}
-
-/// How `max(0, r·v)^p` is computed for the material's `p`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Power {
-    /// A whole `p` in 1..=1024: repeated squaring.
-    Whole(u32),
-    /// Other `p` in (0, 4096]: exp2(p·log2(x)) by polynomials.
-    Fraction,
-    /// Anything else (0, negative, huge): `powf` lane by lane.
-    Scalar,
-}
-
-impl PhongShader {
-    pub fn new(lighting: &Lighting) -> PhongShader {
-        let m = &lighting.material;
-        let lights = lighting
-            .lights
-            .iter()
-            .map(|light| {
-                let i = light.color * light.intensity;
-                let (position, towards) = match light.kind {
-                    LightKind::Point { position } => (Some(position), Vec3::ZERO),
-                    LightKind::Directional { direction } => {
-                        (None, (-direction).normalize_or_zero())
-                    }
-                };
-                LaneLight {
-                    position,
-                    towards,
-                    diffuse: (i * m.kd).to_array(),
-                    specular: (i * m.ks).to_array(),
-                }
-            })
-            .collect();
-        let p = m.shininess;
-        let power = if p.fract() == 0.0 && (1.0..=1024.0).contains(&p) {
-            Power::Whole(p as u32)
-        } else if p > 0.0 && p <= 4096.0 {
-            Power::Fraction
-        } else {
-            Power::Scalar
-        };
-        PhongShader {
-            ambient: (lighting.ambient * m.ka).to_array(),
-            eye: lighting.eye,
-            lights,
-            shininess: p,
-            power,
-            blinn: lighting.specular == Specular::BlinnPhong,
-        }
-    }
-
-    #[inline(always)]
-    fn power<S: Simd>(&self, x: Vf<S>) -> Vf<S> {
-        match self.power {
-            Power::Whole(p) => pow_whole(x, p),
-            Power::Fraction => pow_unit(x, self.shininess),
-            Power::Scalar => power_scalar(x, self.shininess),
-        }
-    }
-}
-
-/// `x^p` lane by lane with `powf`, for exponents outside `pow_unit`'s range.
-#[cold]
-fn power_scalar<S: Simd>(x: Vf<S>, p: f32) -> Vf<S> {
-    let mut lanes = [0.0; 8];
-    x.store(&mut lanes);
-    for v in &mut lanes {
-        *v = v.powf(p);
-    }
-    Vf::load(x.1, &lanes)
-}
-
-/// `v / |v|`. Where `|v|` is zero the lanes become NaN; `light` keeps
-/// those out of the colour exactly where glam's `normalize_or_zero` would
-/// give zero: a NaN `n·l` fails the `n·l > 0` test (unlit, as `n·l = 0`),
-/// and a NaN specular cosine is taken to 0 by `max(cos, 0)` (the second
-/// operand wins on NaN in both backends).
-#[inline(always)]
-fn normalize<S: Simd>(v: [Vf<S>; 3]) -> [Vf<S>; 3] {
-    let len2 = v[0].mul_add(v[0], v[1].mul_add(v[1], v[2] * v[2]));
-    let scale = len2.rsqrt();
-    [v[0] * scale, v[1] * scale, v[2] * scale]
-}
-
-impl Shader for PhongShader {
-    const ATTRS: usize = 6;
-    #[inline(always)]
-    fn shade<S: Simd>(&self, s: S, triangle: &Triangle, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        let flip = triangle.flip;
-        self.light(
-            s,
-            &[a[0] * flip, a[1] * flip, a[2] * flip, a[3], a[4], a[5]],
-        )
-    }
-}
-
-impl PhongShader {
-    /// The reflection model at 8 points `a[3..6]` with normals `a[0..3]`
-    /// (normalized here), as packed colours.
-    #[inline(always)]
-    pub fn light<S: Simd>(&self, s: S, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        let n = normalize([a[0], a[1], a[2]]);
-        let p = [a[3], a[4], a[5]];
-        let view = towards(s, self.eye, &p);
-        let mut out = [
-            Vf::splat(s, self.ambient[0]),
-            Vf::splat(s, self.ambient[1]),
-            Vf::splat(s, self.ambient[2]),
-        ];
-        let zero = Vf::splat(s, 0.0);
-        for light in &self.lights {
-            let l = match light.position {
-                Some(q) => towards(s, q, &p),
-                None => [
-                    Vf::splat(s, light.towards.x),
-                    Vf::splat(s, light.towards.y),
-                    Vf::splat(s, light.towards.z),
-                ],
-            };
-            let n_dot_l = n[0].mul_add(l[0], n[1].mul_add(l[1], n[2] * l[2]));
-            let lit = n_dot_l.gt(zero);
-            let cosine = if self.blinn {
-                let h = normalize([l[0] + view[0], l[1] + view[1], l[2] + view[2]]);
-                n[0].mul_add(h[0], n[1].mul_add(h[1], n[2] * h[2]))
-            } else {
-                let twice = n_dot_l * 2.0;
-                let r = [
-                    n[0] * twice - l[0],
-                    n[1] * twice - l[1],
-                    n[2] * twice - l[2],
-                ];
-                r[0].mul_add(view[0], r[1].mul_add(view[1], r[2] * view[2]))
-            };
-            let spec = self.power(cosine.max(zero));
-            for k in 0..3 {
-                let add = n_dot_l.mul_add(Vf::splat(s, light.diffuse[k]), spec * light.specular[k]);
-                out[k] = out[k] + Vf::select(lit, add, zero);
-            }
-        }
-        pack(out[0], out[1], out[2])
-    }
-}
-
-/// The unit vectors from points `p` towards `q` (NaN where they coincide).
-#[inline(always)]
-fn towards<S: Simd>(s: S, q: Vec3, p: &[Vf<S>; 3]) -> [Vf<S>; 3] {
-    normalize([
-        Vf::splat(s, q.x) - p[0],
-        Vf::splat(s, q.y) - p[1],
-        Vf::splat(s, q.z) - p[2],
-    ])
-}
-
-/// Colours in [0, 1] (clamped) to packed bytes, rounding as [`crate::Rgb8::from_rgb`].
-#[inline(always)]
-fn pack<S: Simd>(r: Vf<S>, g: Vf<S>, b: Vf<S>) -> Vi<S> {
-    byte(r) | byte(g).shl(8) | byte(b).shl(16)
-}
-
-/// A channel in [0, 1] (clamped) to 0..=255, rounding half up.
-#[inline(always)]
-fn byte<S: Simd>(c: Vf<S>) -> Vi<S> {
-    (c.max(c.splat_like(0.0)).min(c.splat_like(1.0)) * 255.0 + c.splat_like(0.5)).to_i()
-}
+use crate::simd::{Simd, Vf, Vi};
 
 /// A band's working storage, kept between frames.
 #[derive(Debug, Default)]
@@ -258,10 +35,37 @@ pub(crate) struct Band {
     /// Polygon stamps for self-crossing polygons, cleared when first used in a frame.
     stamp: Vec<u32>,
     stamp_clean: bool,
+    /// Fragments waiting to be shaded (deferred shaders).
+    queue: Queue,
     /// Fragments that passed the depth test this frame.
     pub fragments: u64,
     /// Pixels drawn this frame.
     pub covered: u64,
+}
+
+/// Fragments of a deferred shader, packed into whole lanes: their
+/// attributes and buffer indices, in the order they passed the depth test.
+#[derive(Debug, Default)]
+struct Queue {
+    attrs: [[f32; 16]; MAX_ATTRS],
+    at: [i32; 16],
+    len: usize,
+}
+
+impl Queue {
+    /// Whether a queued fragment lies in the block at buffer index `at`.
+    #[inline(always)]
+    fn holds<S: Simd>(&self, s: S, at: usize) -> bool {
+        if self.len == 0 {
+            return false;
+        }
+        let (low, high) = (Vi::splat(s, at as i32 - 1), Vi::splat(s, at as i32 + 8));
+        let first = Vi(s.i_load(self.at[..8].try_into().unwrap()), s);
+        let second = Vi(s.i_load(self.at[8..].try_into().unwrap()), s);
+        let inside = |v: Vi<S>| v.gt(low) & high.gt(v);
+        let bits = (inside(first).mask_bits() | inside(second).mask_bits() << 8) as u64;
+        bits & ((1u64 << self.len) - 1) != 0
+    }
 }
 
 /// What a band pass does with covered pixels.
@@ -282,6 +86,7 @@ impl Band {
         let len = self.stride * rows as usize;
         self.fragments = 0;
         self.covered = 0;
+        self.queue.len = 0;
         self.stamp_clean = false;
         match pass {
             Pass::Shade => {
@@ -370,6 +175,7 @@ impl Band {
         t: &Triangle,
         planes: &[Plane],
         shader: &Sh,
+        lanes: &Sh::Lanes<S>,
         interpolation: Interpolation,
         band_y0: u32,
         band_y1: u32,
@@ -387,6 +193,7 @@ impl Band {
             t,
             planes,
             shader,
+            shader_lanes: lanes,
             interpolation,
             pass,
             dx,
@@ -532,10 +339,86 @@ impl Band {
                 }
             }
         }
-        let colors = f.shader.shade(s, f.t, &attrs);
+        if Sh::DEFERRED {
+            if f.t.flip != 1.0 {
+                for k in 0..3 {
+                    attrs[k] = attrs[k] * f.t.flip;
+                }
+            }
+            self.enqueue(s, f.shader, f.shader_lanes, &attrs, bits, at);
+            return;
+        }
+        let colors = f.shader.shade(f.shader_lanes, s, f.t, &attrs);
         let color_slot: &mut [i32; 8] = (&mut self.color[at..at + 8]).try_into().unwrap();
         let old = Vi(s.i_load(color_slot), s);
         s.i_store(Vi::select(pass, colors, old).0, color_slot);
+    }
+
+    /// Queues the fragments of `bits` (block at buffer index `at`), and
+    /// shades 8 of them once there are 8.
+    #[inline(always)]
+    fn enqueue<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        shader: &Sh,
+        lanes: &Sh::Lanes<S>,
+        attrs: &[Vf<S>; MAX_ATTRS],
+        bits: u32,
+        at: usize,
+    ) {
+        if bits == 0xff && !self.queue.holds(s, at) {
+            // A whole block, none of whose pixels waits in the queue: shade
+            // it in place (the queue's fragments are elsewhere, so the
+            // order of writes to each pixel is kept).
+            let colors = shader.light(lanes, s, attrs);
+            s.i_store(colors.0, (&mut self.color[at..at + 8]).try_into().unwrap());
+            return;
+        }
+        let q = &mut self.queue;
+        let len = q.len;
+        for k in 0..Sh::ATTRS {
+            let slot: &mut [f32; 8] = (&mut q.attrs[k][len..len + 8]).try_into().unwrap();
+            attrs[k].compress(bits).store(slot);
+        }
+        let index = Vi::ramp(s) + Vi::splat(s, at as i32);
+        let slot: &mut [i32; 8] = (&mut q.at[len..len + 8]).try_into().unwrap();
+        s.i_store(index.compress(bits).0, slot);
+        q.len = len + bits.count_ones() as usize;
+        if q.len >= 8 {
+            self.shade_queue(s, shader, lanes);
+        }
+    }
+
+    /// Shades the first (up to) 8 queued fragments and writes their colours.
+    #[inline(always)]
+    fn shade_queue<S: Simd, Sh: Shader>(&mut self, s: S, shader: &Sh, lanes: &Sh::Lanes<S>) {
+        let q = &mut self.queue;
+        let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
+        for k in 0..Sh::ATTRS {
+            attrs[k] = Vf::load(s, q.attrs[k][..8].try_into().unwrap());
+        }
+        let mut colors = [0i32; 8];
+        s.i_store(shader.light(lanes, s, &attrs).0, &mut colors);
+        let count = q.len.min(8);
+        for i in 0..count {
+            self.color[q.at[i] as usize] = colors[i];
+        }
+        // Later fragments move to the front, keeping their order.
+        for k in 0..Sh::ATTRS {
+            let rest = Vf::load(s, q.attrs[k][8..].try_into().unwrap());
+            rest.store((&mut q.attrs[k][..8]).try_into().unwrap());
+        }
+        let rest = s.i_load(q.at[8..].try_into().unwrap());
+        s.i_store(rest, (&mut q.at[..8]).try_into().unwrap());
+        q.len -= count;
+    }
+
+    /// Shades whatever is still queued; called once the band's triangles are drawn.
+    #[inline(always)]
+    pub fn flush<S: Simd, Sh: Shader>(&mut self, s: S, shader: &Sh, lanes: &Sh::Lanes<S>) {
+        if Sh::DEFERRED && self.queue.len > 0 {
+            self.shade_queue(s, shader, lanes);
+        }
     }
 
     /// Drops the lanes a self-crossing polygon already drew, and marks the rest.
@@ -557,10 +440,11 @@ impl Band {
 }
 
 /// What every block of one triangle needs.
-struct Fill<'a, S: Simd, Sh> {
+struct Fill<'a, S: Simd, Sh: Shader> {
     t: &'a Triangle,
     planes: &'a [Plane],
     shader: &'a Sh,
+    shader_lanes: &'a Sh::Lanes<S>,
     interpolation: Interpolation,
     pass: Pass,
     /// Each plane's step per pixel along x, in all lanes.

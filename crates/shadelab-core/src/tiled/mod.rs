@@ -25,15 +25,15 @@
 
 mod band;
 mod setup;
+mod shade;
 
 use std::collections::HashMap;
 
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
-use self::band::{
-    band_rows, Band, FlatShader, GouraudShader, Pass, PhongShader, Shader, MAX_ATTRS,
-};
+use self::band::{band_rows, Band, Pass};
+use self::shade::{FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS};
 use self::setup::{plane_count, Plane, Triangle, BAND_ROWS};
 use crate::clip::{clip_polygon, is_inside, ClipVertex};
 use crate::color::Rgb8;
@@ -225,6 +225,23 @@ impl Frame<'_> {
         }
     }
 
+    /// [`Frame::corner_attrs`] of a front face, for the method with `A`
+    /// attributes.
+    #[inline(always)]
+    fn front_attrs<const A: usize>(&self, corner: usize) -> [f32; A] {
+        let mut out = [0.0; A];
+        if A == 3 {
+            let c = self.lit[self.corner_vertex[corner] as usize];
+            out[..3].copy_from_slice(&c);
+        } else if A == 6 {
+            let normals = &self.scene.normals;
+            let n = normals.normals[normals.corner[corner] as usize];
+            let p = self.scene.mesh.positions()[self.scene.mesh.corners()[corner] as usize];
+            out.copy_from_slice(&[n.x, n.y, n.z, p.x, p.y, p.z]);
+        }
+        out
+    }
+
     fn attr_count(&self) -> usize {
         match self.options.shading {
             Shading::Flat => 0,
@@ -275,8 +292,11 @@ impl Chunk {
             .extend(self.clipped.iter().map(|v| to_window(v, width, height)));
     }
 
-    /// Sets up polygons `faces` and bins their triangles.
-    fn setup(&mut self, frame: &Frame<'_>, faces: std::ops::Range<usize>) {
+    /// Sets up polygons `faces` and bins their triangles, with the method's
+    /// `A` attributes, compiled for the SIMD level (for the compiler's own
+    /// vectorization: the arithmetic is the same, so are the results).
+    #[inline(always)]
+    fn setup<const A: usize>(&mut self, frame: &Frame<'_>, faces: std::ops::Range<usize>) {
         self.bins.resize_with(frame.bands, Bin::default);
         self.bins.truncate(frame.bands);
         for bin in &mut self.bins {
@@ -296,7 +316,7 @@ impl Chunk {
             if let &[i0, i1, i2] = corners {
                 let p = [i0, i1, i2].map(|i| frame.projected[i as usize]);
                 if p.iter().all(Projected::inside) {
-                    match self.setup_triangle(frame, face, range.start, &p, normal) {
+                    match self.setup_triangle::<A>(frame, face, range.start, &p, normal) {
                         Some(()) => continue,
                         None => {} // a back face drawn with culling off
                     }
@@ -313,7 +333,7 @@ impl Chunk {
     /// volume, set up straight from the projected positions. `None` when it
     /// is a back face to be drawn (culling off), left to `setup_polygon`.
     #[inline(always)]
-    fn setup_triangle(
+    fn setup_triangle<const A: usize>(
         &mut self,
         frame: &Frame<'_>,
         face: usize,
@@ -341,19 +361,18 @@ impl Chunk {
         let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
             return Some(());
         };
-        let attrs = frame.attr_count();
-        let v: [ScreenVertex<MAX_ATTRS>; 3] = std::array::from_fn(|k| ScreenVertex {
+        let v: [ScreenVertex<A>; 3] = std::array::from_fn(|k| ScreenVertex {
             x: x[k],
             y: y[k],
             depth: p[k].depth,
             inv_w: p[k].inv_w,
-            attrs: frame.corner_attrs(first_corner + k, false),
+            attrs: frame.front_attrs::<A>(first_corner + k),
         });
-        let planes = t.planes(&v, attrs, options.interpolation);
-        if options.shading == Shading::Flat {
+        let planes = t.planes(&v, A, options.interpolation);
+        if A == 0 {
             t.color = self.flat_surface(frame, face, normal, false);
         }
-        self.bin(&t, &planes[..plane_count(attrs)]);
+        self.bin(&t, &planes[..plane_count(A)]);
         Some(())
     }
 
@@ -470,6 +489,27 @@ impl Chunk {
     }
 }
 
+/// One chunk's setup, compiled per SIMD level.
+struct SetupKernel<'a, 'f> {
+    chunk: &'a mut Chunk,
+    frame: &'a Frame<'f>,
+    faces: std::ops::Range<usize>,
+}
+
+impl Kernel for SetupKernel<'_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<S: Simd>(self, _: S) {
+        let (chunk, frame, faces) = (self.chunk, self.frame, self.faces);
+        match frame.options.shading {
+            Shading::Flat => chunk.setup::<0>(frame, faces),
+            Shading::Gouraud => chunk.setup::<3>(frame, faces),
+            Shading::Phong => chunk.setup::<6>(frame, faces),
+        }
+    }
+}
+
 /// Flat shading's lighting, 8 polygons per SIMD evaluation.
 struct FlatKernel<'a> {
     surfaces: &'a [[f32; 6]],
@@ -540,6 +580,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         };
         self.band.begin(o.width, y1 - y0, pass);
         let stride = plane_count(S::ATTRS);
+        let lanes = self.shader.lanes(simd);
         for chunk in self.chunks {
             let bin = &chunk.bins[self.index];
             for (t, planes) in bin.triangles.iter().zip(bin.planes.chunks_exact(stride)) {
@@ -548,6 +589,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                     t,
                     planes,
                     self.shader,
+                    &lanes,
                     o.interpolation,
                     y0,
                     y1,
@@ -555,6 +597,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                 );
             }
         }
+        self.band.flush(simd, self.shader, &lanes);
         match self.output {
             Output::Image(pixels, background) => {
                 self.band.finish(simd, pixels, o.width, background)
@@ -634,7 +677,10 @@ impl TiledRasterizer {
                 Shading::Gouraud => {
                     band_pass(simd, band, index, chunks, &GouraudShader, options, output)
                 }
-                Shading::Phong => band_pass(simd, band, index, chunks, &phong, options, output),
+                Shading::Phong => match &phong.one_point_light {
+                    Some(one) => band_pass(simd, band, index, chunks, one, options, output),
+                    None => band_pass(simd, band, index, chunks, &phong, options, output),
+                },
             }
         });
         for band in &self.bands {
@@ -748,7 +794,14 @@ impl TiledRasterizer {
             .for_each(|(i, chunk)| {
                 let start = polygons * i / chunk_count;
                 let end = polygons * (i + 1) / chunk_count;
-                chunk.setup(&frame, start..end);
+                dispatch(
+                    frame.simd,
+                    SetupKernel {
+                        chunk,
+                        frame: &frame,
+                        faces: start..end,
+                    },
+                );
             });
 
         let mut stats = RenderStats {

@@ -141,8 +141,21 @@ impl Triangle {
         attrs: usize,
         interpolation: Interpolation,
     ) -> [Plane; PLANES] {
-        let mut planes = [Plane::default(); PLANES];
-        let mut count = 0;
+        // The values at the three corners, one array per corner so that
+        // the per-plane arithmetic below is a straight loop over planes.
+        let mut q = [[0f64; PLANES]; 3];
+        for i in 0..3 {
+            let inv_w = f64::from(v[i].inv_w);
+            let scale = match interpolation {
+                Interpolation::Perspective => inv_w,
+                Interpolation::Screen => 1.0,
+            };
+            q[i][0] = f64::from(v[i].depth);
+            q[i][1] = inv_w;
+            for k in 0..N.min(PLANES - 2) {
+                q[i][2 + k] = f64::from(v[i].attrs[k]) * scale;
+            }
+        }
         let pixel = |u: i64| u as f64 * (1.0 / SUBPIXEL_ONE as f64);
         let (px, py) = (v.map(|v| pixel(v.x)), v.map(|v| pixel(v.y)));
         let (e1x, e1y) = (px[1] - px[0], py[1] - py[0]);
@@ -155,29 +168,16 @@ impl Triangle {
         );
         let (gx1, gx2) = (e2y * inv_det, -e1y * inv_det);
         let (gy1, gy2) = (-e2x * inv_det, e1x * inv_det);
-        let mut plane = |q: [f64; 3]| {
-            let (d1, d2) = (q[1] - q[0], q[2] - q[0]);
+        let mut planes = [Plane::default(); PLANES];
+        for k in 0..plane_count(attrs) {
+            let (d1, d2) = (q[1][k] - q[0][k], q[2][k] - q[0][k]);
             let dx = d1 * gx1 + d2 * gx2;
             let dy = d1 * gy1 + d2 * gy2;
-            planes[count] = Plane {
-                at_origin: (q[0] + dx * ox + dy * oy) as f32,
+            planes[k] = Plane {
+                at_origin: (q[0][k] + dx * ox + dy * oy) as f32,
                 dx: dx as f32,
                 dy: dy as f32,
             };
-            count += 1;
-        };
-        plane(v.map(|v| f64::from(v.depth)));
-        if attrs == 0 {
-            return planes;
-        }
-        let inv_w = v.map(|v| f64::from(v.inv_w));
-        plane(inv_w);
-        for k in 0..attrs.min(N) {
-            let scale = match interpolation {
-                Interpolation::Perspective => inv_w,
-                Interpolation::Screen => [1.0; 3],
-            };
-            plane([0, 1, 2].map(|i| f64::from(v[i].attrs[k]) * scale[i]));
         }
         planes
     }
@@ -189,7 +189,7 @@ impl Triangle {
 }
 
 /// Planes per triangle for a method interpolating `attrs` attributes.
-pub(crate) fn plane_count(attrs: usize) -> usize {
+pub(crate) const fn plane_count(attrs: usize) -> usize {
     if attrs == 0 {
         1
     } else {
