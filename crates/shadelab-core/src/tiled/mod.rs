@@ -316,7 +316,7 @@ impl Chunk {
             if let &[i0, i1, i2] = corners {
                 let p = [i0, i1, i2].map(|i| frame.projected[i as usize]);
                 if p.iter().all(Projected::inside) {
-                    match self.setup_triangle::<A>(frame, face, range.start, &p, normal) {
+                    match self.setup_triangle::<A>(frame, range.start, &p, normal) {
                         Some(()) => continue,
                         None => {} // a back face drawn with culling off
                     }
@@ -336,7 +336,6 @@ impl Chunk {
     fn setup_triangle<const A: usize>(
         &mut self,
         frame: &Frame<'_>,
-        face: usize,
         first_corner: usize,
         p: &[Projected; 3],
         normal: Vec3,
@@ -361,16 +360,27 @@ impl Chunk {
         let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
             return Some(());
         };
-        let v: [ScreenVertex<A>; 3] = std::array::from_fn(|k| ScreenVertex {
+        let vertex = |k: usize| ScreenVertex {
             x: x[k],
             y: y[k],
             depth: p[k].depth,
             inv_w: p[k].inv_w,
             attrs: frame.front_attrs::<A>(first_corner + k),
-        });
+        };
+        let v: [ScreenVertex<A>; 3] = [vertex(0), vertex(1), vertex(2)];
         let planes = t.planes(&v, A, options.interpolation);
         if A == 0 {
-            t.color = self.flat_surface(frame, face, normal, false);
+            // As `flat_surface`, with the triangle's corners at hand.
+            let positions = frame.scene.mesh.positions();
+            let corners = &frame.scene.mesh.corners()[first_corner..first_corner + 3];
+            let c = (Vec3::ZERO
+                + positions[corners[0] as usize]
+                + positions[corners[1] as usize]
+                + positions[corners[2] as usize])
+                / 3.0;
+            self.flat_surfaces
+                .push([normal.x, normal.y, normal.z, c.x, c.y, c.z]);
+            t.color = (self.flat_surfaces.len() - 1) as u32;
         }
         self.bin(&t, &planes[..plane_count(A)]);
         Some(())
@@ -484,6 +494,54 @@ impl Chunk {
         for bin in &mut self.bins {
             for t in &mut bin.triangles {
                 t.color = self.flat_colors[t.color as usize] as u32;
+            }
+        }
+    }
+}
+
+/// Gouraud's vertex colours, 8 vertices per SIMD evaluation, clamped to
+/// [0, 1] as `Lighting::eval(..).clamped()`.
+struct VertexKernel<'a> {
+    first: usize,
+    colors: &'a mut [[f32; 3]],
+    table: &'a VertexTable,
+    positions: &'a [Vec3],
+    normals: &'a [Vec3],
+    sign: f32,
+    shader: &'a PhongShader,
+    specular: bool,
+}
+
+impl Kernel for VertexKernel<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) {
+        let t = self.table;
+        for (j, colors) in self.colors.chunks_mut(8).enumerate() {
+            let base = self.first + 8 * j;
+            let mut lanes = [[0f32; 8]; 6];
+            for i in 0..colors.len() {
+                let v = base + i;
+                let p = t.position[v];
+                if p == u32::MAX {
+                    continue;
+                }
+                let n = self.normals[t.normal[v] as usize] * self.sign;
+                let q = self.positions[p as usize];
+                for (k, value) in [n.x, n.y, n.z, q.x, q.y, q.z].into_iter().enumerate() {
+                    lanes[k][i] = value;
+                }
+            }
+            let attrs: [Vf<S>; MAX_ATTRS] = std::array::from_fn(|k| Vf::load(s, &lanes[k]));
+            let rgb = self.shader.radiance(s, &attrs, self.specular);
+            let mut out = [[0f32; 8]; 3];
+            for k in 0..3 {
+                let c = rgb[k].max(Vf::splat(s, 0.0)).min(Vf::splat(s, 1.0));
+                c.store(&mut out[k]);
+            }
+            for (i, color) in colors.iter_mut().enumerate() {
+                *color = [out[0][i], out[1][i], out[2][i]];
             }
         }
     }
@@ -837,22 +895,24 @@ impl TiledRasterizer {
         };
         let table = &self.vertices;
         let positions = scene.mesh.positions();
+        let shader = PhongShader::new(lighting);
+        let simd = self.simd;
         let light = |out: &mut Vec<[f32; 3]>, sign: f32| {
             out.resize(table.position.len(), [0.0; 3]);
             out.par_chunks_mut(1024)
                 .enumerate()
                 .for_each(|(k, colors)| {
-                    for (i, color) in colors.iter_mut().enumerate() {
-                        let v = k * 1024 + i;
-                        let p = table.position[v];
-                        if p != u32::MAX {
-                            let n = normals.normals[table.normal[v] as usize] * sign;
-                            *color = lighting
-                                .eval(positions[p as usize], n, terms)
-                                .clamped()
-                                .to_array();
-                        }
-                    }
+                    let kernel = VertexKernel {
+                        first: k * 1024,
+                        colors,
+                        table,
+                        positions,
+                        normals: &normals.normals,
+                        sign,
+                        shader: &shader,
+                        specular: terms == Terms::Full,
+                    };
+                    dispatch(simd, kernel);
                 });
         };
         light(&mut self.lit, 1.0);

@@ -156,20 +156,21 @@ impl Triangle {
                 q[i][2 + k] = f64::from(v[i].attrs[k]) * scale;
             }
         }
-        let pixel = |u: i64| u as f64 * (1.0 / SUBPIXEL_ONE as f64);
-        let (px, py) = (v.map(|v| pixel(v.x)), v.map(|v| pixel(v.y)));
-        let (e1x, e1y) = (px[1] - px[0], py[1] - py[0]);
-        let (e2x, e2y) = (px[2] - px[0], py[2] - py[0]);
+        let unit = 1.0 / SUBPIXEL_ONE as f64;
+        let (px0, py0) = (v[0].x as f64 * unit, v[0].y as f64 * unit);
+        let (e1x, e1y) = ((v[1].x - v[0].x) as f64 * unit, (v[1].y - v[0].y) as f64 * unit);
+        let (e2x, e2y) = ((v[2].x - v[0].x) as f64 * unit, (v[2].y - v[0].y) as f64 * unit);
         let inv_det = 1.0 / (e1x * e2y - e2x * e1y);
         // Pixel centre of the first pixel, relative to vertex 0.
-        let (ox, oy) = (
-            f64::from(self.x0) + 0.5 - px[0],
-            f64::from(self.y0) + 0.5 - py[0],
-        );
+        let (ox, oy) = (f64::from(self.x0) + 0.5 - px0, f64::from(self.y0) + 0.5 - py0);
         let (gx1, gx2) = (e2y * inv_det, -e1y * inv_det);
         let (gy1, gy2) = (-e2x * inv_det, e1x * inv_det);
         let mut planes = [Plane::default(); PLANES];
-        for k in 0..plane_count(attrs) {
+        let count = plane_count(attrs);
+        for k in 0..PLANES {
+            if k == count {
+                break;
+            }
             let (d1, d2) = (q[1][k] - q[0][k], q[2][k] - q[0][k]);
             let dx = d1 * gx1 + d2 * gx2;
             let dy = d1 * gy1 + d2 * gy2;

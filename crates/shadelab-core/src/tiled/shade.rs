@@ -231,6 +231,15 @@ impl PhongShader {
     /// (normalized here), as packed colours.
     #[inline(always)]
     pub fn light<S: Simd>(&self, s: S, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
+        let [r, g, b] = self.radiance(s, a, true);
+        pack(r, g, b)
+    }
+
+    /// The reflected light per channel, unclamped, at 8 points `a[3..6]`
+    /// with normals `a[0..3]` (normalized here); without the specular term
+    /// unless `specular` (as [`Lighting::eval`] with its `Terms`).
+    #[inline(always)]
+    pub fn radiance<S: Simd>(&self, s: S, a: &[Vf<S>; MAX_ATTRS], specular: bool) -> [Vf<S>; 3] {
         let n = normalize([a[0], a[1], a[2]]);
         let p = [a[3], a[4], a[5]];
         let view = towards(s, self.eye, &p);
@@ -251,25 +260,29 @@ impl PhongShader {
             };
             let n_dot_l = n[0].mul_add(l[0], n[1].mul_add(l[1], n[2] * l[2]));
             let lit = n_dot_l.gt(zero);
-            let cosine = if self.blinn {
-                let h = normalize([l[0] + view[0], l[1] + view[1], l[2] + view[2]]);
-                n[0].mul_add(h[0], n[1].mul_add(h[1], n[2] * h[2]))
+            let spec = if specular {
+                let cosine = if self.blinn {
+                    let h = normalize([l[0] + view[0], l[1] + view[1], l[2] + view[2]]);
+                    n[0].mul_add(h[0], n[1].mul_add(h[1], n[2] * h[2]))
+                } else {
+                    let twice = n_dot_l * 2.0;
+                    let r = [
+                        n[0] * twice - l[0],
+                        n[1] * twice - l[1],
+                        n[2] * twice - l[2],
+                    ];
+                    r[0].mul_add(view[0], r[1].mul_add(view[1], r[2] * view[2]))
+                };
+                self.power(cosine.max(zero))
             } else {
-                let twice = n_dot_l * 2.0;
-                let r = [
-                    n[0] * twice - l[0],
-                    n[1] * twice - l[1],
-                    n[2] * twice - l[2],
-                ];
-                r[0].mul_add(view[0], r[1].mul_add(view[1], r[2] * view[2]))
+                zero
             };
-            let spec = self.power(cosine.max(zero));
             for k in 0..3 {
                 let add = n_dot_l.mul_add(Vf::splat(s, light.diffuse[k]), spec * light.specular[k]);
                 out[k] = out[k] + Vf::select(lit, add, zero);
             }
         }
-        pack(out[0], out[1], out[2])
+        out
     }
 }
 
