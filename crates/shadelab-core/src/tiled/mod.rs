@@ -28,6 +28,7 @@ mod setup;
 mod shade;
 
 use std::collections::HashMap;
+use std::sync::{Mutex, MutexGuard};
 
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
@@ -58,7 +59,9 @@ pub(crate) struct TiledRasterizer {
     lit: Vec<[f32; 3]>,
     lit_back: Vec<[f32; 3]>,
     chunks: Vec<Chunk>,
-    bands: Vec<Band>,
+    /// One band's working buffers per thread: each thread draws its bands
+    /// one after the other in the same buffers, which stay in its cache.
+    bands: Vec<Mutex<Band>>,
 }
 
 /// A vertex's window position, when it is inside the view volume and guard
@@ -665,6 +668,13 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
     }
 }
 
+/// The calling thread's band buffers (uncontended: one per pool thread;
+/// a caller outside the pool uses the first).
+fn scratch_band(scratch: &[Mutex<Band>]) -> MutexGuard<'_, Band> {
+    let slot = rayon::current_thread_index().unwrap_or(0) % scratch.len();
+    scratch[slot].lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
 /// Runs one band of a pass with the shader `S`, compiled for the SIMD level.
 fn band_pass<S: Shader>(
     simd: SimdLevel,
@@ -723,12 +733,14 @@ impl TiledRasterizer {
         let Rgb8([r, g, b]) = options.background;
         let background = i32::from(r) | i32::from(g) << 8 | i32::from(b) << 16;
         let phong = PhongShader::new(lighting);
+        let scratch = &self.bands;
         let bands = image
             .pixels_mut()
             .par_chunks_mut(width * BAND_ROWS as usize)
-            .zip(self.bands.par_iter_mut())
             .enumerate();
-        bands.for_each(|(index, (pixels, band))| {
+        let totals = bands.map(|(index, pixels)| {
+            let mut guard = scratch_band(scratch);
+            let band = &mut *guard;
             let output = Output::Image(pixels, background);
             match options.shading {
                 Shading::Flat => band_pass(simd, band, index, chunks, &FlatShader, options, output),
@@ -740,11 +752,11 @@ impl TiledRasterizer {
                     None => band_pass(simd, band, index, chunks, &phong, options, output),
                 },
             }
+            (band.fragments, band.covered)
         });
-        for band in &self.bands {
-            stats.fragments_shaded += band.fragments;
-            stats.covered_pixels += band.covered;
-        }
+        let (fragments, covered) = totals.reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+        stats.fragments_shaded += fragments;
+        stats.covered_pixels += covered;
         if options.shading == Shading::Phong {
             stats.lighting_evaluations = stats.fragments_shaded;
         }
@@ -766,13 +778,14 @@ impl TiledRasterizer {
         let width = options.width as usize;
         let mut counts = vec![0u32; width * options.height as usize];
         let (chunks, simd) = (&self.chunks, self.simd);
+        let scratch = &self.bands;
         counts
             .par_chunks_mut(width * BAND_ROWS as usize)
-            .zip(self.bands.par_iter_mut())
             .enumerate()
-            .for_each(|(index, (out, band))| {
+            .for_each(|(index, out)| {
+                let mut band = scratch_band(scratch);
                 let output = Output::Counts(out);
-                band_pass(simd, band, index, chunks, &FlatShader, &options, output);
+                band_pass(simd, &mut band, index, chunks, &FlatShader, &options, output);
             });
         counts
     }
@@ -826,8 +839,9 @@ impl TiledRasterizer {
         self.faces.update(mesh);
         let phong = PhongShader::new(lighting);
         let bands = height.div_ceil(BAND_ROWS) as usize;
-        self.bands.resize_with(bands, Band::default);
-        self.bands.truncate(bands);
+        let threads = rayon::current_num_threads().max(1);
+        self.bands.resize_with(threads, Mutex::default);
+        self.bands.truncate(threads);
         let chunk_count = (rayon::current_num_threads() * 2).max(1);
         self.chunks.resize_with(chunk_count, Chunk::default);
         self.chunks.truncate(chunk_count);
