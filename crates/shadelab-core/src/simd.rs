@@ -97,8 +97,6 @@ pub(crate) trait Simd: Copy + Send + Sync {
     type F: Copy;
     /// 8 × i32; masks are all ones (true) or zero per lane.
     type I: Copy;
-    /// 8 × i64, for edge functions.
-    type E: Copy;
 
     fn f_splat(self, v: f32) -> Self::F;
     fn f_add(self, a: Self::F, b: Self::F) -> Self::F;
@@ -161,12 +159,6 @@ pub(crate) trait Simd: Copy + Send + Sync {
 
     /// The low three bytes of each lane, packed: 8 RGB pixels.
     fn i_store_rgb(self, v: Self::I, dst: &mut [u8; 24]);
-
-    /// `start + step·i` in lane `i`.
-    fn e_ramp(self, start: i64, step: i64) -> Self::E;
-    fn e_add(self, a: Self::E, v: i64) -> Self::E;
-    /// Bits 0..8 of the lanes where all three are non-negative.
-    fn e_inside(self, a: Self::E, b: Self::E, c: Self::E) -> u32;
 }
 
 /// For each 8-bit mask, the indices of its set lanes in order, then zeros:
@@ -205,7 +197,6 @@ macro_rules! lanes {
 impl Simd for Portable {
     type F = [f32; 8];
     type I = [i32; 8];
-    type E = [i64; 8];
 
     #[inline(always)]
     fn f_splat(self, v: f32) -> [f32; 8] {
@@ -370,19 +361,6 @@ impl Simd for Portable {
             pixel.copy_from_slice(&v[i].to_le_bytes()[..3]);
         }
     }
-
-    #[inline(always)]
-    fn e_ramp(self, start: i64, step: i64) -> [i64; 8] {
-        lanes!(|i| start + step * i as i64)
-    }
-    #[inline(always)]
-    fn e_add(self, a: [i64; 8], v: i64) -> [i64; 8] {
-        lanes!(|i| a[i] + v)
-    }
-    #[inline(always)]
-    fn e_inside(self, a: [i64; 8], b: [i64; 8], c: [i64; 8]) -> u32 {
-        (0..8).fold(0, |acc, i| acc | u32::from((a[i] | b[i] | c[i]) >= 0) << i)
-    }
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -414,7 +392,6 @@ mod avx2 {
     impl Simd for Avx2 {
         type F = __m256;
         type I = __m256i;
-        type E = [__m256i; 2];
 
         #[inline(always)]
         fn f_splat(self, v: f32) -> __m256 {
@@ -644,37 +621,6 @@ mod avx2 {
                 _mm_storeu_si128(p.cast(), low);
                 _mm_storel_epi64(p.add(12).cast(), high);
                 (p.add(20) as *mut i32).write_unaligned(_mm_extract_epi32::<2>(high));
-            }
-        }
-
-        #[inline(always)]
-        fn e_ramp(self, start: i64, step: i64) -> [__m256i; 2] {
-            // SAFETY: see the impl.
-            unsafe {
-                let s = |k: i64| start + step * k;
-                [
-                    _mm256_setr_epi64x(s(0), s(1), s(2), s(3)),
-                    _mm256_setr_epi64x(s(4), s(5), s(6), s(7)),
-                ]
-            }
-        }
-        #[inline(always)]
-        fn e_add(self, a: [__m256i; 2], v: i64) -> [__m256i; 2] {
-            // SAFETY: see the impl.
-            unsafe {
-                let v = _mm256_set1_epi64x(v);
-                [_mm256_add_epi64(a[0], v), _mm256_add_epi64(a[1], v)]
-            }
-        }
-        #[inline(always)]
-        fn e_inside(self, a: [__m256i; 2], b: [__m256i; 2], c: [__m256i; 2]) -> u32 {
-            // SAFETY: see the impl.
-            unsafe {
-                let lo = _mm256_or_si256(_mm256_or_si256(a[0], b[0]), c[0]);
-                let hi = _mm256_or_si256(_mm256_or_si256(a[1], b[1]), c[1]);
-                let outside = _mm256_movemask_pd(_mm256_castsi256_pd(lo))
-                    | _mm256_movemask_pd(_mm256_castsi256_pd(hi)) << 4;
-                !(outside as u32) & 0xff
             }
         }
     }
@@ -975,31 +921,35 @@ mod tests {
         }
     }
 
-    struct Edges;
+    struct Lanes;
 
-    impl Kernel for Edges {
-        type Output = (u32, u32, u32);
+    impl Kernel for Lanes {
+        type Output = ([f32; 8], u32, u32, [i32; 8]);
         #[inline(always)]
-        fn run<S: Simd>(self, s: S) -> (u32, u32, u32) {
-            let a = s.e_ramp(-3, 1);
-            let b = s.e_ramp(0, 0);
-            let c = s.e_add(s.e_ramp(1 << 40, -(1 << 38)), 0);
+        fn run<S: Simd>(self, s: S) -> ([f32; 8], u32, u32, [i32; 8]) {
             let mask = Vi::from_mask_bits(s, 0b1010_0110);
+            let values = Vf::load(s, &[0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
+            let mut packed = [0.0; 8];
+            values.compress(0b1010_0110).store(&mut packed);
+            let ramp = Vi::ramp(s) * Vi::splat(s, 3);
+            let mut above = [0; 8];
+            s.i_store(ramp.gt(Vi::splat(s, 7)).0, &mut above);
             (
-                s.e_inside(a, b, c),
+                packed,
                 mask.mask_bits(),
                 (Vi::splat(s, -1) & mask).mask_bits(),
+                above,
             )
         }
     }
 
     #[test]
-    fn edge_masks() {
+    fn lane_operations() {
         for level in [SimdLevel::Portable, SimdLevel::detect()] {
-            assert_eq!(
-                dispatch(level, Edges),
-                (0b0001_1000, 0b1010_0110, 0b1010_0110)
-            );
+            let (packed, bits, and, above) = dispatch(level, Lanes);
+            assert_eq!(packed[..4], [1.0, 2.0, 5.0, 7.0], "{level:?}");
+            assert_eq!((bits, and), (0b1010_0110, 0b1010_0110), "{level:?}");
+            assert_eq!(above, [0, 0, 0, -1, -1, -1, -1, -1], "{level:?}");
         }
     }
 }
