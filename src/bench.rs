@@ -151,7 +151,12 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {s:?}"))?;
-    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|&v| (1..=16384).contains(&v));
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&v| (1..=16384).contains(&v))
+    };
     match (parse(w), parse(h)) {
         (Some(w), Some(h)) => Ok((w, h)),
         _ => Err(format!("each side must be 1..=16384, got {s:?}")),
@@ -268,8 +273,7 @@ fn load_models(args: &BenchArgs, selected: &[BenchModel]) -> anyhow::Result<Vec<
                 format!("built-in {}", kind.name()),
             ),
             (_, Some(file)) => {
-                let Some(path) = dir.as_ref().map(|d| d.join(file)).filter(|p| p.is_file())
-                else {
+                let Some(path) = dir.as_ref().map(|d| d.join(file)).filter(|p| p.is_file()) else {
                     let place = dir.as_ref().map_or_else(
                         || "../shared/models (not found)".to_string(),
                         |d| d.display().to_string(),

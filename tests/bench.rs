@@ -49,7 +49,11 @@ fn json_has_one_row_per_combination() {
     let simd = json["machine"]["simd"].as_str().unwrap();
     assert!(["avx2", "portable"].contains(&simd), "{simd}");
     let rows = json["rows"].as_array().unwrap();
-    assert_eq!(rows.len(), 2 * 2 * 2 * 2, "models × methods × threads × rasterizers");
+    assert_eq!(
+        rows.len(),
+        2 * 2 * 2 * 2,
+        "models × methods × threads × rasterizers"
+    );
     for row in rows {
         for key in [
             "model",
@@ -68,7 +72,10 @@ fn json_has_one_row_per_combination() {
         ] {
             assert!(!row[key].is_null(), "{key} missing in {row}");
         }
-        assert_eq!((row["width"].as_u64(), row["height"].as_u64()), (Some(40), Some(30)));
+        assert_eq!(
+            (row["width"].as_u64(), row["height"].as_u64()),
+            (Some(40), Some(30))
+        );
         assert!(row["frames"].as_u64().unwrap() >= 2);
         assert!(row["median_ms"].as_f64().unwrap() >= row["min_ms"].as_f64().unwrap());
         assert!(row["covered_pixels"].as_u64().unwrap() > 0, "{row}");
@@ -90,7 +97,14 @@ fn json_has_one_row_per_combination() {
 #[test]
 fn table_has_a_header_and_a_line_per_row() {
     let mut args = TINY.to_vec();
-    args.extend(["--model", "teapot", "--shading", "gouraud", "--threads", "1"]);
+    args.extend([
+        "--model",
+        "teapot",
+        "--shading",
+        "gouraud",
+        "--threads",
+        "1",
+    ]);
     let out = shadelab(&args);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
@@ -101,9 +115,14 @@ fn table_has_a_header_and_a_line_per_row() {
     for column in ["ms/frame", "Mpix/s", "Mtri/s", "raster", "thr"] {
         assert!(header.contains(column), "{header}");
     }
-    let rows: Vec<&str> = stdout.lines().filter(|l| l.starts_with("teapot ")).collect();
+    let rows: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.starts_with("teapot "))
+        .collect();
     assert_eq!(rows.len(), 2, "tiled and scanline:\n{stdout}");
-    assert!(rows.iter().all(|r| r.contains("40x30") && r.contains("gouraud")));
+    assert!(rows
+        .iter()
+        .all(|r| r.contains("40x30") && r.contains("gouraud")));
 }
 
 #[test]
@@ -125,7 +144,10 @@ fn missing_meshes_are_named_and_skipped() {
     let out = shadelab(&args);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stderr = text(&out.stderr);
-    assert!(stderr.contains("bunny skipped") && stderr.contains("dragon skipped"), "{stderr}");
+    assert!(
+        stderr.contains("bunny skipped") && stderr.contains("dragon skipped"),
+        "{stderr}"
+    );
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let rows = json["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 1);
@@ -178,12 +200,24 @@ fn export_writes_consistent_geometry_and_images() {
     assert!(indices
         .chunks_exact(4)
         .all(|i| u64::from(u32::from_le_bytes(i.try_into().unwrap())) < vertices));
-    for key in ["eye", "target", "up", "light", "ka", "kd", "ks", "background"] {
+    for key in [
+        "eye",
+        "target",
+        "up",
+        "light",
+        "ka",
+        "kd",
+        "ks",
+        "background",
+    ] {
         assert_eq!(info[key].as_array().map(Vec::len), Some(3), "{key}");
     }
     assert_eq!(info["shininess"].as_f64(), Some(32.0));
     assert!(is_png(&file("sphere-40x30-phong.png")));
-    assert!(!file("sphere-40x30-flat.png").exists(), "only the methods asked for");
+    assert!(
+        !file("sphere-40x30-flat.png").exists(),
+        "only the methods asked for"
+    );
 }
 
 fn is_png(path: &Path) -> bool {

@@ -114,14 +114,24 @@ fn benches(c: &mut Criterion) {
 
     let teapot = framed("teapot", 8, 1.0);
     for shading in Shading::ALL {
-        run("frame/teapot-512", &teapot, options(512, 512, shading, Rasterizer::Tiled), best);
+        run(
+            "frame/teapot-512",
+            &teapot,
+            options(512, 512, shading, Rasterizer::Tiled),
+            best,
+        );
         run(
             "frame/teapot-512",
             &teapot,
             options(512, 512, shading, Rasterizer::Tiled),
             SimdLevel::Portable,
         );
-        run("frame/teapot-512", &teapot, options(512, 512, shading, Rasterizer::Scanline), best);
+        run(
+            "frame/teapot-512",
+            &teapot,
+            options(512, 512, shading, Rasterizer::Scanline),
+            best,
+        );
     }
     let sphere = framed("icosphere", 6, 1.0);
     for shading in Shading::ALL {
@@ -134,7 +144,12 @@ fn benches(c: &mut Criterion) {
     }
     let fill = quad(1920.0 / 1080.0);
     for shading in Shading::ALL {
-        run("fill/quad-1080p", &fill, options(1920, 1080, shading, Rasterizer::Tiled), best);
+        run(
+            "fill/quad-1080p",
+            &fill,
+            options(1920, 1080, shading, Rasterizer::Tiled),
+            best,
+        );
     }
 }
 

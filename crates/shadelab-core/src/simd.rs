@@ -170,7 +170,7 @@ const COMPRESS: [[i32; 8]; 256] = {
         let (mut lane, mut k) = (0, 0);
         while lane < 8 {
             if (mask >> lane) & 1 == 1 {
-                table[mask][k] = lane as i32;
+                table[mask][k] = lane;
                 k += 1;
             }
             lane += 1;

@@ -1,16 +1,26 @@
 //! The inner loop: one band of image rows, its triangles, blocks of 8 pixels.
 //!
-//! A band owns a depth buffer and a packed-colour buffer for its rows, so
-//! bands run in parallel with no sharing and the buffers stay in cache. For
-//! each triangle binned to the band, in submission order, each row of its
-//! bounding box is walked in blocks of 8 pixels aligned to multiples of 8:
+//! A band has a depth buffer and a packed-colour buffer for its rows (one
+//! set per thread, reused band after band, so they stay in cache). For each
+//! triangle binned to the band, in submission order, each row of its
+//! bounding box within the band is walked in blocks of 8 pixels aligned to
+//! multiples of 8, in one of two ways chosen at setup (`setup::Walk`):
 //!
-//! 1. coverage: the three edge functions in 8 × `i64` lanes, one add per
-//!    block, a lane in when all three are ≥ 0 (the bias is in `c`);
-//! 2. depth test "less" against the band's buffer, depth from its plane;
-//! 3. shading, specialised per method by the [`Shader`] type parameter:
-//!    flat writes a constant, Gouraud converts interpolated colours, Phong
-//!    evaluates the reflection model in 8 lanes.
+//! * **blocks** (small triangles, nearly all of a dense mesh): the three
+//!   edge functions in 8 × `i32` lanes, one add per edge and block, a lane
+//!   in when all three are ≥ 0 (the top-left bias is in `c`). `i32` is exact
+//!   here because setup checked the functions' range over the box;
+//! * **spans** (large triangles): per row, each edge's boundary column is
+//!   found exactly (see [`span`]) and the span between them is filled with
+//!   no edge arithmetic per pixel.
+//!
+//! Then per block: depth test "less" (depth from its plane), and shading
+//! specialised per method by the [`Shader`] type parameter. Phong does not
+//! shade block by block: small triangles leave most lanes of a block empty,
+//! so fragments that pass the depth test are packed into a queue and lit 8
+//! at a time, and their colours written back in the order they were queued
+//! (a later fragment of the same pixel is written later, as without the
+//! queue). A whole block none of whose pixels is queued is lit in place.
 //!
 //! Nothing here allocates. Everything is `#[inline(always)]` so that
 //! [`crate::simd::dispatch`] compiles it for AVX2 and for the portable path.

@@ -1,6 +1,20 @@
 //! The fast rasterizer: per-vertex work once, triangle setup in parallel
-//! chunks with per-chunk binning into bands of rows, then bands rasterized
-//! in parallel with SIMD blocks of 8 pixels.
+//! chunks with per-chunk binning into bands of 16 rows, then bands
+//! rasterized in parallel with SIMD blocks of 8 pixels.
+//!
+//! The pipeline of a frame:
+//!
+//! 1. **Vertices** (parallel): each position transformed and snapped once;
+//!    Gouraud lights each distinct (position, normal) 8 at a time.
+//! 2. **Setup** (parallel, in chunks of consecutive polygons): a triangle
+//!    whose corners are all inside the view volume goes straight from the
+//!    projected positions: facing from the snapped area, culling before any
+//!    attribute is read, the bounding box's pixel centres (none: done), edge
+//!    functions and attribute planes. Anything else (clipped, back faces drawn,
+//!    polygons) takes the general path. Each triangle is copied, with its
+//!    planes, into the bin of every band it touches.
+//! 3. **Bands** (parallel): a band reads its chunks' bins in order (see
+//!    `band.rs`), then writes its rows of the image.
 //!
 //! What must hold, and why it is built this way:
 //!
@@ -14,12 +28,15 @@
 //! * **Per-vertex work once per vertex.** Positions are transformed and
 //!   snapped once each; a polygon whose vertices are all inside the view
 //!   volume and guard band (nearly all of them) skips clipping, because
-//!   clipping would return it unchanged. Gouraud lights each distinct
-//!   (position, normal) pair once.
-//! * **Order is kept.** Chunks of consecutive polygons are set up in
-//!   parallel, each binning into its own per-band lists; a band walks the
-//!   chunks in order, so triangles meet the depth test in submission order,
-//!   as with one thread, and the image does not depend on the thread count.
+//!   clipping would return it unchanged.
+//! * **Order is kept.** Chunks are set up in parallel, each binning into its
+//!   own per-band lists; a band walks the chunks in order, so triangles meet
+//!   the depth test in submission order, as with one thread, and the image
+//!   does not depend on the thread count.
+//! * **Memory is read in streams.** Bins hold copies of their triangles, so
+//!   a band reads one contiguous run instead of chasing indices; each thread
+//!   draws its bands one after another in the same depth and colour
+//!   buffers, which stay in its cache.
 //! * **No allocation per frame in steady state.** All buffers live in
 //!   [`TiledRasterizer`] and are cleared, not dropped, between frames.
 
@@ -34,8 +51,8 @@ use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 use self::band::{band_rows, Band, Pass};
-use self::shade::{FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS};
 use self::setup::{plane_count, Plane, Triangle, BAND_ROWS};
+use self::shade::{FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS};
 use crate::clip::{clip_polygon, is_inside, ClipVertex};
 use crate::color::Rgb8;
 use crate::image::Image;
@@ -319,9 +336,12 @@ impl Chunk {
             if let &[i0, i1, i2] = corners {
                 let p = [i0, i1, i2].map(|i| frame.projected[i as usize]);
                 if p.iter().all(Projected::inside) {
-                    match self.setup_triangle::<A>(frame, range.start, &p, normal) {
-                        Some(()) => continue,
-                        None => {} // a back face drawn with culling off
+                    // `None`: a back face drawn with culling off, left to the general path.
+                    if self
+                        .setup_triangle::<A>(frame, range.start, &p, normal)
+                        .is_some()
+                    {
+                        continue;
                     }
                 }
             }
@@ -524,8 +544,7 @@ impl Kernel for VertexKernel<'_> {
         for (j, colors) in self.colors.chunks_mut(8).enumerate() {
             let base = self.first + 8 * j;
             let mut lanes = [[0f32; 8]; 6];
-            for i in 0..colors.len() {
-                let v = base + i;
+            for (i, v) in (base..base + colors.len()).enumerate() {
                 let p = t.position[v];
                 if p == u32::MAX {
                     continue;
@@ -672,7 +691,9 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
 /// a caller outside the pool uses the first).
 fn scratch_band(scratch: &[Mutex<Band>]) -> MutexGuard<'_, Band> {
     let slot = rayon::current_thread_index().unwrap_or(0) % scratch.len();
-    scratch[slot].lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+    scratch[slot]
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
 /// Runs one band of a pass with the shader `S`, compiled for the SIMD level.
@@ -785,7 +806,15 @@ impl TiledRasterizer {
             .for_each(|(index, out)| {
                 let mut band = scratch_band(scratch);
                 let output = Output::Counts(out);
-                band_pass(simd, &mut band, index, chunks, &FlatShader, &options, output);
+                band_pass(
+                    simd,
+                    &mut band,
+                    index,
+                    chunks,
+                    &FlatShader,
+                    &options,
+                    output,
+                );
             });
         counts
     }

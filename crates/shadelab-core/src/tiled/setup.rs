@@ -158,11 +158,20 @@ impl Triangle {
         }
         let unit = 1.0 / SUBPIXEL_ONE as f64;
         let (px0, py0) = (v[0].x as f64 * unit, v[0].y as f64 * unit);
-        let (e1x, e1y) = ((v[1].x - v[0].x) as f64 * unit, (v[1].y - v[0].y) as f64 * unit);
-        let (e2x, e2y) = ((v[2].x - v[0].x) as f64 * unit, (v[2].y - v[0].y) as f64 * unit);
+        let (e1x, e1y) = (
+            (v[1].x - v[0].x) as f64 * unit,
+            (v[1].y - v[0].y) as f64 * unit,
+        );
+        let (e2x, e2y) = (
+            (v[2].x - v[0].x) as f64 * unit,
+            (v[2].y - v[0].y) as f64 * unit,
+        );
         let inv_det = 1.0 / (e1x * e2y - e2x * e1y);
         // Pixel centre of the first pixel, relative to vertex 0.
-        let (ox, oy) = (f64::from(self.x0) + 0.5 - px0, f64::from(self.y0) + 0.5 - py0);
+        let (ox, oy) = (
+            f64::from(self.x0) + 0.5 - px0,
+            f64::from(self.y0) + 0.5 - py0,
+        );
         let (gx1, gx2) = (e2y * inv_det, -e1y * inv_det);
         let (gy1, gy2) = (-e2x * inv_det, e1x * inv_det);
         let mut planes = [Plane::default(); PLANES];

@@ -370,13 +370,7 @@ impl Shader for OnePointLight {
 impl OnePointLight {
     /// As `PhongShader::light`, with `flip` folded into the normal's scale.
     #[inline(always)]
-    fn lit<S: Simd>(
-        &self,
-        k: &OneLightLanes<S>,
-        s: S,
-        flip: f32,
-        a: &[Vf<S>; MAX_ATTRS],
-    ) -> Vi<S> {
+    fn lit<S: Simd>(&self, k: &OneLightLanes<S>, s: S, flip: f32, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
         let len2 = a[0].mul_add(a[0], a[1].mul_add(a[1], a[2] * a[2]));
         let scale = len2.rsqrt() * flip;
         let n = [a[0] * scale, a[1] * scale, a[2] * scale];
