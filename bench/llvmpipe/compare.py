@@ -359,7 +359,8 @@ def report(args, gl, rows, load_before, load_after):
             f"| {r['ours_2']:.2f} | {ratio:.2f}× | {'yes' if ratio >= 3 else '**no**'} |"
         )
     p("")
-    p("ratio = llvmpipe's time / shadelab's time.")
+    met = sum(1 for r in rows if r["llvmpipe_ms"] / r["ours_2"] >= 3)
+    p(f"ratio = llvmpipe's time / shadelab's time; {met} of {len(rows)} rows at 3× or more.")
     p("")
     p("### Threads: shadelab with 1 and 2 threads")
     p("")

@@ -7,6 +7,7 @@
 #   bash bench/llvmpipe/run.sh                 # the whole standard set
 #   FRAMES=11 bash bench/llvmpipe/run.sh       # quicker
 #   MODELS=bunny,quad SIZES=1920x1080 bash bench/llvmpipe/run.sh
+#   UPDATE=1 bash bench/llvmpipe/run.sh        # also rewrite BENCHMARKS.md's measured part
 #
 # Images (ours and llvmpipe's) are left in target/llvmpipe/.
 set -euo pipefail
@@ -38,4 +39,20 @@ rm -rf "$out/scenes"
 
 LP_NUM_THREADS=2 "$out/venv/bin/python" bench/llvmpipe/compare.py \
   --scenes "$out/scenes" --shadelab "$bin" --images "$out/images" --frames "$frames" \
-  --command "${FRAMES:+FRAMES=$FRAMES }${MODELS:+MODELS=$MODELS }${SIZES:+SIZES=$SIZES }bash bench/llvmpipe/run.sh"
+  --command "${FRAMES:+FRAMES=$FRAMES }${MODELS:+MODELS=$MODELS }${SIZES:+SIZES=$SIZES }bash bench/llvmpipe/run.sh" \
+  | tee "$out/report.md"
+
+if [ -n "${UPDATE:-}" ]; then
+  # Replace what lies between the two markers of BENCHMARKS.md.
+  python3 - "$out/report.md" <<'PY'
+import sys, pathlib
+report = pathlib.Path(sys.argv[1]).read_text()
+path = pathlib.Path("BENCHMARKS.md")
+text = path.read_text()
+begin, end = "<!-- measured: begin -->", "<!-- measured: end -->"
+head, rest = text.split(begin, 1)
+_, tail = rest.split(end, 1)
+path.write_text(head + begin + "\n" + report.rstrip() + "\n" + end + tail)
+print("BENCHMARKS.md updated", file=sys.stderr)
+PY
+fi

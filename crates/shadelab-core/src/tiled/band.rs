@@ -60,21 +60,18 @@ struct Queue {
     attrs: [[f32; 16]; MAX_ATTRS],
     at: [i32; 16],
     len: usize,
+    /// The smallest and largest buffer index queued since the queue was
+    /// last empty (a superset of what it holds).
+    first: i32,
+    last: i32,
 }
 
 impl Queue {
-    /// Whether a queued fragment lies in the block at buffer index `at`.
+    /// Whether a queued fragment may lie in the block at buffer index `at`
+    /// (false only when none does): the queue's index range against the block's.
     #[inline(always)]
-    fn holds<S: Simd>(&self, s: S, at: usize) -> bool {
-        if self.len == 0 {
-            return false;
-        }
-        let (low, high) = (Vi::splat(s, at as i32 - 1), Vi::splat(s, at as i32 + 8));
-        let first = Vi(s.i_load(self.at[..8].try_into().unwrap()), s);
-        let second = Vi(s.i_load(self.at[8..].try_into().unwrap()), s);
-        let inside = |v: Vi<S>| v.gt(low) & high.gt(v);
-        let bits = (inside(first).mask_bits() | inside(second).mask_bits() << 8) as u64;
-        bits & ((1u64 << self.len) - 1) != 0
+    fn holds(&self, at: usize) -> bool {
+        self.len > 0 && (at as i32) <= self.last && at as i32 + 8 > self.first
     }
 }
 
@@ -376,7 +373,7 @@ impl Band {
         bits: u32,
         at: usize,
     ) {
-        if bits == 0xff && !self.queue.holds(s, at) {
+        if bits == 0xff && !self.queue.holds(at) {
             // A whole block, none of whose pixels waits in the queue: shade
             // it in place (the queue's fragments are elsewhere, so the
             // order of writes to each pixel is kept).
@@ -386,6 +383,11 @@ impl Band {
         }
         let q = &mut self.queue;
         let len = q.len;
+        if len == 0 {
+            (q.first, q.last) = (i32::MAX, i32::MIN);
+        }
+        q.first = q.first.min(at as i32);
+        q.last = q.last.max(at as i32 + 7);
         for k in 0..Sh::ATTRS {
             let slot: &mut [f32; 8] = (&mut q.attrs[k][len..len + 8]).try_into().unwrap();
             attrs[k].compress(bits).store(slot);
