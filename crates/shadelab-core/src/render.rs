@@ -370,12 +370,11 @@ fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
         });
     }
     scene.camera.validate()?;
+    // A maximum over all corners (no early exit) so the loop vectorizes:
+    // it runs every frame over every corner.
+    let largest = scene.normals.corner.iter().fold(0, |m, &i| m.max(i));
     if scene.normals.corner.len() != scene.mesh.corners().len()
-        || scene
-            .normals
-            .corner
-            .iter()
-            .any(|&i| i as usize >= scene.normals.normals.len())
+        || (!scene.normals.corner.is_empty() && largest as usize >= scene.normals.normals.len())
     {
         return Err(RenderError::NormalsMismatch {
             normals: scene.normals.corner.len(),
