@@ -735,6 +735,12 @@ impl<S: Simd> Vi<S> {
     pub fn lt(self, o: Self) -> Self {
         Vi(self.1.i_gt(o.0, self.0), self.1)
     }
+    /// Bits 0..8 of the lanes where `self == o`.
+    #[inline(always)]
+    pub fn eq_bits(self, o: Self) -> u32 {
+        let s = self.1;
+        !(Vi(s.i_gt(self.0, o.0), s) | Vi(s.i_gt(o.0, self.0), s)).mask_bits() & 0xff
+    }
     /// The lanes set in `bits`, packed to the front.
     #[inline(always)]
     pub fn compress(self, bits: u32) -> Self {
@@ -817,6 +823,31 @@ pub(crate) fn pow_whole<S: Simd>(x: Vf<S>, p: u32) -> Vf<S> {
     }
     for _ in 0..k {
         result = result * result;
+    }
+    result
+}
+
+/// [`pow_whole`] of `G` vectors at once, step by step, so that their
+/// chains of squarings overlap.
+#[inline(always)]
+pub(crate) fn pow_whole_groups<S: Simd, const G: usize>(x: [Vf<S>; G], p: u32) -> [Vf<S>; G] {
+    let k = p.trailing_zeros();
+    let mut m = p >> k >> 1;
+    let mut result = x;
+    let mut base = x;
+    while m > 0 {
+        for g in 0..G {
+            base[g] = base[g] * base[g];
+            if m & 1 == 1 {
+                result[g] = result[g] * base[g];
+            }
+        }
+        m >>= 1;
+    }
+    for _ in 0..k {
+        for g in 0..G {
+            result[g] = result[g] * result[g];
+        }
     }
     result
 }

@@ -18,9 +18,10 @@
 //! specialised per method by the [`Shader`] type parameter. Phong does not
 //! shade block by block: small triangles leave most lanes of a block empty,
 //! so fragments that pass the depth test are packed into a queue and lit 8
-//! at a time, and their colours written back in the order they were queued
-//! (a later fragment of the same pixel is written later, as without the
-//! queue). A whole block none of whose pixels is queued is lit in place.
+//! at a time (two blocks of 8 lit together, so that their long dependency
+//! chains overlap), and their colours written back in the order they were
+//! queued (a later fragment of the same pixel is written later, as without
+//! the queue; eight queued pixels in a row are written with one store).
 //!
 //! Nothing here allocates. Everything is `#[inline(always)]` so that
 //! [`crate::simd::dispatch`] compiles it for AVX2 and for the portable path.
@@ -57,22 +58,9 @@ pub(crate) struct Band {
 /// attributes and buffer indices, in the order they passed the depth test.
 #[derive(Debug, Default)]
 struct Queue {
-    attrs: [[f32; 16]; MAX_ATTRS],
-    at: [i32; 16],
+    attrs: [[f32; 24]; MAX_ATTRS],
+    at: [i32; 24],
     len: usize,
-    /// The smallest and largest buffer index queued since the queue was
-    /// last empty (a superset of what it holds).
-    first: i32,
-    last: i32,
-}
-
-impl Queue {
-    /// Whether a queued fragment may lie in the block at buffer index `at`
-    /// (false only when none does): the queue's index range against the block's.
-    #[inline(always)]
-    fn holds(&self, at: usize) -> bool {
-        self.len > 0 && (at as i32) <= self.last && at as i32 + 8 > self.first
-    }
 }
 
 /// What a band pass does with covered pixels.
@@ -362,7 +350,7 @@ impl Band {
     }
 
     /// Queues the fragments of `bits` (block at buffer index `at`), and
-    /// shades 8 of them once there are 8.
+    /// shades 16 of them once there are 16.
     #[inline(always)]
     fn enqueue<S: Simd, Sh: Shader>(
         &mut self,
@@ -373,21 +361,8 @@ impl Band {
         bits: u32,
         at: usize,
     ) {
-        if bits == 0xff && !self.queue.holds(at) {
-            // A whole block, none of whose pixels waits in the queue: shade
-            // it in place (the queue's fragments are elsewhere, so the
-            // order of writes to each pixel is kept).
-            let colors = shader.light(lanes, s, attrs);
-            s.i_store(colors.0, (&mut self.color[at..at + 8]).try_into().unwrap());
-            return;
-        }
         let q = &mut self.queue;
         let len = q.len;
-        if len == 0 {
-            (q.first, q.last) = (i32::MAX, i32::MIN);
-        }
-        q.first = q.first.min(at as i32);
-        q.last = q.last.max(at as i32 + 7);
         for k in 0..Sh::ATTRS {
             let slot: &mut [f32; 8] = (&mut q.attrs[k][len..len + 8]).try_into().unwrap();
             attrs[k].compress(bits).store(slot);
@@ -396,31 +371,49 @@ impl Band {
         let slot: &mut [i32; 8] = (&mut q.at[len..len + 8]).try_into().unwrap();
         s.i_store(index.compress(bits).0, slot);
         q.len = len + bits.count_ones() as usize;
-        if q.len >= 8 {
+        if q.len >= 16 {
             self.shade_queue(s, shader, lanes);
         }
     }
 
-    /// Shades the first (up to) 8 queued fragments and writes their colours.
+    /// Shades the first (up to) 16 queued fragments, as two blocks lit
+    /// together, and writes their colours.
     #[inline(always)]
     fn shade_queue<S: Simd, Sh: Shader>(&mut self, s: S, shader: &Sh, lanes: &Sh::Lanes<S>) {
         let q = &mut self.queue;
-        let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
+        let mut first = [Vf::splat(s, 0.0); MAX_ATTRS];
+        let mut second = [Vf::splat(s, 0.0); MAX_ATTRS];
         for k in 0..Sh::ATTRS {
-            attrs[k] = Vf::load(s, q.attrs[k][..8].try_into().unwrap());
+            first[k] = Vf::load(s, q.attrs[k][..8].try_into().unwrap());
+            second[k] = Vf::load(s, q.attrs[k][8..16].try_into().unwrap());
         }
-        let mut colors = [0i32; 8];
-        s.i_store(shader.light(lanes, s, &attrs).0, &mut colors);
-        let count = q.len.min(8);
-        for i in 0..count {
-            self.color[q.at[i] as usize] = colors[i];
+        let colors = shader.light_pair(lanes, s, &first, &second);
+        let count = q.len.min(16);
+        for (g, colors) in colors.into_iter().enumerate() {
+            let at: &[i32; 8] = q.at[8 * g..8 * g + 8].try_into().unwrap();
+            let n = count.saturating_sub(8 * g).min(8);
+            let in_a_row = Vi(s.i_load(at), s).eq_bits(Vi::ramp(s) + Vi::splat(s, at[0]));
+            if n == 8 && in_a_row == 0xff {
+                // Eight fragments in a row (a whole block): one store.
+                let start = at[0] as usize;
+                s.i_store(
+                    colors.0,
+                    (&mut self.color[start..start + 8]).try_into().unwrap(),
+                );
+            } else {
+                let mut values = [0i32; 8];
+                s.i_store(colors.0, &mut values);
+                for i in 0..n {
+                    self.color[at[i] as usize] = values[i];
+                }
+            }
         }
         // Later fragments move to the front, keeping their order.
         for k in 0..Sh::ATTRS {
-            let rest = Vf::load(s, q.attrs[k][8..].try_into().unwrap());
+            let rest = Vf::load(s, q.attrs[k][16..].try_into().unwrap());
             rest.store((&mut q.attrs[k][..8]).try_into().unwrap());
         }
-        let rest = s.i_load(q.at[8..].try_into().unwrap());
+        let rest = s.i_load(q.at[16..].try_into().unwrap());
         s.i_store(rest, (&mut q.at[..8]).try_into().unwrap());
         q.len -= count;
     }

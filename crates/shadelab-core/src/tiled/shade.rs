@@ -17,7 +17,7 @@ use glam::Vec3;
 
 use super::setup::Triangle;
 use crate::lighting::{LightKind, Lighting, Specular};
-use crate::simd::{pow_unit, pow_whole, Simd, Vf, Vi};
+use crate::simd::{pow_unit, pow_whole, pow_whole_groups, Simd, Vf, Vi};
 
 /// The most attributes a method interpolates (Phong: normal and position).
 pub(crate) const MAX_ATTRS: usize = 6;
@@ -39,6 +39,17 @@ pub(crate) trait Shader: Sync {
     fn light<S: Simd>(&self, lanes: &Self::Lanes<S>, s: S, attrs: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
         let _ = (lanes, attrs);
         Vi::splat(s, 0)
+    }
+    /// [`Shader::light`] of 16 queued fragments, as two blocks of 8.
+    #[inline(always)]
+    fn light_pair<S: Simd>(
+        &self,
+        lanes: &Self::Lanes<S>,
+        s: S,
+        a: &[Vf<S>; MAX_ATTRS],
+        b: &[Vf<S>; MAX_ATTRS],
+    ) -> [Vi<S>; 2] {
+        [self.light(lanes, s, a), self.light(lanes, s, b)]
     }
     /// Colours of 8 fragments, packed `r | g << 8 | b << 16`.
     fn shade<S: Simd>(
@@ -343,6 +354,17 @@ impl Shader for OnePointLight {
     }
 
     #[inline(always)]
+    fn light_pair<S: Simd>(
+        &self,
+        k: &OneLightLanes<S>,
+        s: S,
+        a: &[Vf<S>; MAX_ATTRS],
+        b: &[Vf<S>; MAX_ATTRS],
+    ) -> [Vi<S>; 2] {
+        self.lit_groups(k, s, 1.0, [a, b])
+    }
+
+    #[inline(always)]
     fn lanes<S: Simd>(&self, s: S) -> OneLightLanes<S> {
         let v = |v: Vec3| [Vf::splat(s, v.x), Vf::splat(s, v.y), Vf::splat(s, v.z)];
         let c = |c: [f32; 3]| c.map(|c| Vf::splat(s, c));
@@ -371,38 +393,77 @@ impl OnePointLight {
     /// As `PhongShader::light`, with `flip` folded into the normal's scale.
     #[inline(always)]
     fn lit<S: Simd>(&self, k: &OneLightLanes<S>, s: S, flip: f32, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        let len2 = a[0].mul_add(a[0], a[1].mul_add(a[1], a[2] * a[2]));
-        let scale = len2.rsqrt() * flip;
-        let n = [a[0] * scale, a[1] * scale, a[2] * scale];
-        let p = [a[3], a[4], a[5]];
-        let l = normalize([k.light[0] - p[0], k.light[1] - p[1], k.light[2] - p[2]]);
-        let v = normalize([k.eye[0] - p[0], k.eye[1] - p[1], k.eye[2] - p[2]]);
-        let n_dot_l = n[0].mul_add(l[0], n[1].mul_add(l[1], n[2] * l[2]));
+        let [c] = self.lit_groups(k, s, flip, [a]);
+        c
+    }
+
+    /// [`OnePointLight::lit`] of `G` blocks at once, each step done for all
+    /// of them before the next: the blocks' dependency chains (three square
+    /// roots, the power's squarings) overlap in the processor instead of
+    /// waiting one after the other.
+    #[inline(always)]
+    fn lit_groups<S: Simd, const G: usize>(
+        &self,
+        k: &OneLightLanes<S>,
+        s: S,
+        flip: f32,
+        a: [&[Vf<S>; MAX_ATTRS]; G],
+    ) -> [Vi<S>; G] {
         let zero = Vf::splat(s, 0.0);
-        let cosine = if self.blinn {
-            let h = normalize([l[0] + v[0], l[1] + v[1], l[2] + v[2]]);
-            n[0].mul_add(h[0], n[1].mul_add(h[1], n[2] * h[2]))
-        } else {
-            // r·v with r = 2(n·l)n − l.
-            let twice = n_dot_l * 2.0;
-            let r = [
-                n[0] * twice - l[0],
-                n[1] * twice - l[1],
-                n[2] * twice - l[2],
-            ];
-            r[0].mul_add(v[0], r[1].mul_add(v[1], r[2] * v[2]))
-        };
-        let spec = match self.power {
-            Power::Whole(p) => pow_whole(cosine.max(zero), p),
-            Power::Fraction => pow_unit(cosine.max(zero), self.shininess),
-            Power::Scalar => power_scalar(cosine.max(zero), self.shininess),
-        };
-        let lit = n_dot_l.gt(zero);
-        let mut out = k.ambient;
-        for c in 0..3 {
-            let add = n_dot_l.mul_add(k.diffuse[c], spec * k.specular[c]);
-            out[c] = out[c] + Vf::select(lit, add, zero);
+        let mut n = [[zero; 3]; G];
+        let mut l = [[zero; 3]; G];
+        let mut v = [[zero; 3]; G];
+        let mut n_dot_l = [zero; G];
+        for g in 0..G {
+            let a = a[g];
+            let len2 = a[0].mul_add(a[0], a[1].mul_add(a[1], a[2] * a[2]));
+            let scale = len2.rsqrt() * flip;
+            n[g] = [a[0] * scale, a[1] * scale, a[2] * scale];
+            let p = [a[3], a[4], a[5]];
+            l[g] = normalize([k.light[0] - p[0], k.light[1] - p[1], k.light[2] - p[2]]);
+            v[g] = normalize([k.eye[0] - p[0], k.eye[1] - p[1], k.eye[2] - p[2]]);
+            let (n, l) = (n[g], l[g]);
+            n_dot_l[g] = n[0].mul_add(l[0], n[1].mul_add(l[1], n[2] * l[2]));
         }
-        pack(out[0], out[1], out[2])
+        let mut cosine = [zero; G];
+        if self.blinn {
+            for g in 0..G {
+                let (n, l, v) = (n[g], l[g], v[g]);
+                let h = normalize([l[0] + v[0], l[1] + v[1], l[2] + v[2]]);
+                cosine[g] = n[0]
+                    .mul_add(h[0], n[1].mul_add(h[1], n[2] * h[2]))
+                    .max(zero);
+            }
+        } else {
+            for g in 0..G {
+                // r·v with r = 2(n·l)n − l.
+                let (n, l, v) = (n[g], l[g], v[g]);
+                let twice = n_dot_l[g] * 2.0;
+                let r = [
+                    n[0] * twice - l[0],
+                    n[1] * twice - l[1],
+                    n[2] * twice - l[2],
+                ];
+                cosine[g] = r[0]
+                    .mul_add(v[0], r[1].mul_add(v[1], r[2] * v[2]))
+                    .max(zero);
+            }
+        }
+        let spec = match self.power {
+            Power::Whole(p) => pow_whole_groups(cosine, p),
+            Power::Fraction => cosine.map(|c| pow_unit(c, self.shininess)),
+            Power::Scalar => cosine.map(|c| power_scalar(c, self.shininess)),
+        };
+        let mut colors = [Vi::splat(s, 0); G];
+        for g in 0..G {
+            let lit = n_dot_l[g].gt(zero);
+            let mut out = k.ambient;
+            for c in 0..3 {
+                let add = n_dot_l[g].mul_add(k.diffuse[c], spec[g] * k.specular[c]);
+                out[c] = out[c] + Vf::select(lit, add, zero);
+            }
+            colors[g] = pack(out[0], out[1], out[2]);
+        }
+        colors
     }
 }
