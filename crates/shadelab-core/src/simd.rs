@@ -845,8 +845,8 @@ pub(crate) fn pow_whole_groups<S: Simd, const G: usize>(x: [Vf<S>; G], p: u32) -
         m >>= 1;
     }
     for _ in 0..k {
-        for g in 0..G {
-            result[g] = result[g] * result[g];
+        for r in &mut result {
+            *r = *r * *r;
         }
     }
     result
