@@ -76,6 +76,8 @@ pub(crate) struct TiledRasterizer {
     lit: Vec<[f32; 3]>,
     lit_back: Vec<[f32; 3]>,
     chunks: Vec<Chunk>,
+    /// The frame's lighting, prepared for lanes.
+    phong: PhongShader,
     /// One band's working buffers per thread: each thread draws its bands
     /// one after the other in the same buffers, which stay in its cache.
     bands: Vec<Mutex<Band>>,
@@ -732,6 +734,7 @@ impl TiledRasterizer {
             lit: Vec::new(),
             lit_back: Vec::new(),
             chunks: Vec::new(),
+            phong: PhongShader::default(),
             bands: Vec::new(),
         }
     }
@@ -753,7 +756,7 @@ impl TiledRasterizer {
         let (chunks, simd) = (&self.chunks, self.simd);
         let Rgb8([r, g, b]) = options.background;
         let background = i32::from(r) | i32::from(g) << 8 | i32::from(b) << 16;
-        let phong = PhongShader::new(lighting);
+        let phong = &self.phong;
         let scratch = &self.bands;
         let bands = image
             .pixels_mut()
@@ -770,7 +773,7 @@ impl TiledRasterizer {
                 }
                 Shading::Phong => match &phong.one_point_light {
                     Some(one) => band_pass(simd, band, index, chunks, one, options, output),
-                    None => band_pass(simd, band, index, chunks, &phong, options, output),
+                    None => band_pass(simd, band, index, chunks, phong, options, output),
                 },
             }
             (band.fragments, band.covered)
@@ -831,6 +834,7 @@ impl TiledRasterizer {
         let view_projection = scene.camera.projection(aspect) * scene.camera.view();
         let guard = guard_band(width, height);
         let mesh = &scene.mesh;
+        self.phong.update(lighting);
 
         let positions = mesh.positions();
         self.projected.resize(positions.len(), Projected::default());
@@ -862,11 +866,10 @@ impl TiledRasterizer {
 
         let mut evaluations = 0;
         if options.shading == Shading::Gouraud {
-            evaluations = self.light_vertices(scene, options, lighting);
+            evaluations = self.light_vertices(scene, options);
         }
 
         self.faces.update(mesh);
-        let phong = PhongShader::new(lighting);
         let bands = height.div_ceil(BAND_ROWS) as usize;
         let threads = rayon::current_num_threads().max(1);
         self.bands.resize_with(threads, Mutex::default);
@@ -881,7 +884,7 @@ impl TiledRasterizer {
             clip: &self.clip,
             corner_vertex: &self.vertices.corner_vertex,
             faces: &self.faces.normals,
-            phong: &phong,
+            phong: &self.phong,
             simd: self.simd,
             lit: &self.lit,
             lit_back: &self.lit_back,
@@ -921,13 +924,9 @@ impl TiledRasterizer {
         stats
     }
 
-    /// Gouraud's per-vertex lighting; returns the number of evaluations.
-    fn light_vertices(
-        &mut self,
-        scene: &Scene,
-        options: &RenderOptions,
-        lighting: &Lighting,
-    ) -> u64 {
+    /// Gouraud's per-vertex lighting, with the frame's lighting already in
+    /// `self.phong`; returns the number of evaluations.
+    fn light_vertices(&mut self, scene: &Scene, options: &RenderOptions) -> u64 {
         let normals = &scene.normals;
         self.vertices
             .update(scene.mesh.corners(), &normals.corner, normals.normals.len());
@@ -938,7 +937,7 @@ impl TiledRasterizer {
         };
         let table = &self.vertices;
         let positions = scene.mesh.positions();
-        let shader = PhongShader::new(lighting);
+        let shader = &self.phong;
         let simd = self.simd;
         let light = |out: &mut Vec<[f32; 3]>, sign: f32| {
             out.resize(table.position.len(), [0.0; 3]);
@@ -952,7 +951,7 @@ impl TiledRasterizer {
                         positions,
                         normals: &normals.normals,
                         sign,
-                        shader: &shader,
+                        shader,
                         specular: terms == Terms::Full,
                     };
                     dispatch(simd, kernel);

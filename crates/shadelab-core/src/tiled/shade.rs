@@ -103,6 +103,7 @@ struct LaneLight {
 }
 
 /// Phong shading: the reflection model per pixel, as [`Lighting::eval`].
+#[derive(Debug, Default)]
 pub(crate) struct PhongShader {
     /// One point light: what [`OnePointLight`] needs.
     pub one_point_light: Option<OnePointLight>,
@@ -115,38 +116,37 @@ pub(crate) struct PhongShader {
 }
 
 /// How `max(0, r·v)^p` is computed for the material's `p`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 enum Power {
     /// A whole `p` in 1..=1024: repeated squaring.
     Whole(u32),
     /// Other `p` in (0, 4096]: exp2(p·log2(x)) by polynomials.
     Fraction,
     /// Anything else (0, negative, huge): `powf` lane by lane.
+    #[default]
     Scalar,
 }
 
 impl PhongShader {
-    pub fn new(lighting: &Lighting) -> PhongShader {
+    /// Becomes the shader for `lighting`, reusing its storage (no
+    /// allocation once it has held as many lights).
+    pub fn update(&mut self, lighting: &Lighting) {
         let m = &lighting.material;
-        let lights: Vec<LaneLight> = lighting
-            .lights
-            .iter()
-            .map(|light| {
-                let i = light.color * light.intensity;
-                let (position, towards) = match light.kind {
-                    LightKind::Point { position } => (Some(position), Vec3::ZERO),
-                    LightKind::Directional { direction } => {
-                        (None, (-direction).normalize_or_zero())
-                    }
-                };
-                LaneLight {
-                    position,
-                    towards,
-                    diffuse: (i * m.kd).to_array(),
-                    specular: (i * m.ks).to_array(),
-                }
-            })
-            .collect();
+        let mut lights = std::mem::take(&mut self.lights);
+        lights.clear();
+        lights.extend(lighting.lights.iter().map(|light| {
+            let i = light.color * light.intensity;
+            let (position, towards) = match light.kind {
+                LightKind::Point { position } => (Some(position), Vec3::ZERO),
+                LightKind::Directional { direction } => (None, (-direction).normalize_or_zero()),
+            };
+            LaneLight {
+                position,
+                towards,
+                diffuse: (i * m.kd).to_array(),
+                specular: (i * m.ks).to_array(),
+            }
+        }));
         let p = m.shininess;
         let power = if p.fract() == 0.0 && (1.0..=1024.0).contains(&p) {
             Power::Whole(p as u32)
@@ -173,7 +173,7 @@ impl PhongShader {
             }),
             _ => None,
         };
-        PhongShader {
+        *self = PhongShader {
             one_point_light,
             ambient: (lighting.ambient * m.ka).to_array(),
             eye: lighting.eye,
@@ -181,7 +181,7 @@ impl PhongShader {
             shininess: p,
             power,
             blinn: lighting.specular == Specular::BlinnPhong,
-        }
+        };
     }
 
     #[inline(always)]
