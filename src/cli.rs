@@ -43,6 +43,8 @@ pub enum Command {
     Cost(CostArgs),
     /// Serve the interactive viewer (flat | Gouraud | Phong, live) in the browser.
     View(ViewArgs),
+    /// Time the standard scenes: ms/frame, Mpixel/s, Mtriangles/s per model, size, method, rasterizer, threads.
+    Bench(crate::bench::BenchArgs),
 }
 
 /// `--lang`

@@ -298,6 +298,8 @@ pub fn coverage(scene: &Scene, options: &RenderOptions) -> Result<Vec<u32>, Rend
 #[derive(Debug)]
 pub struct Renderer {
     tiled: TiledRasterizer,
+    /// The frame's lighting, rebuilt in place each frame.
+    lighting: Lighting,
 }
 
 impl Default for Renderer {
@@ -316,6 +318,13 @@ impl Renderer {
     pub fn with_simd(level: SimdLevel) -> Renderer {
         Renderer {
             tiled: TiledRasterizer::new(level),
+            lighting: Lighting {
+                ambient: Rgb::default(),
+                lights: Vec::new(),
+                material: Material::default(),
+                eye: Vec3::ZERO,
+                specular: Specular::default(),
+            },
         }
     }
 
@@ -339,9 +348,10 @@ impl Renderer {
         if image.width() != options.width || image.height() != options.height {
             *image = Image::filled(options.width, options.height, options.background);
         }
-        let lighting = lighting(scene, options);
+        set_lighting(&mut self.lighting, scene, options);
+        let lighting = &self.lighting;
         Ok(match options.rasterizer {
-            Rasterizer::Tiled => self.tiled.render(scene, options, &lighting, image),
+            Rasterizer::Tiled => self.tiled.render(scene, options, lighting, image),
             Rasterizer::Scanline => {
                 let mut frame = Frame {
                     color: std::mem::replace(image, Image::filled(1, 1, options.background)),
@@ -349,7 +359,7 @@ impl Renderer {
                     width: options.width,
                 };
                 frame.color.pixels_mut().fill(options.background);
-                let mut stats = draw(scene, options, &lighting, &mut frame);
+                let mut stats = draw(scene, options, lighting, &mut frame);
                 stats.covered_pixels = frame.depth.iter().filter(|&&d| d < 1.0).count() as u64;
                 *image = frame.color;
                 stats
@@ -387,13 +397,25 @@ impl Renderer {
 }
 
 pub(crate) fn lighting(scene: &Scene, options: &RenderOptions) -> Lighting {
-    Lighting {
+    let mut lighting = Lighting {
         ambient: scene.ambient,
-        lights: scene.lights.clone(),
+        lights: Vec::new(),
         material: scene.material,
         eye: scene.camera.eye,
         specular: options.specular,
-    }
+    };
+    set_lighting(&mut lighting, scene, options);
+    lighting
+}
+
+/// Makes `lighting` the scene's, reusing its list of lights.
+fn set_lighting(lighting: &mut Lighting, scene: &Scene, options: &RenderOptions) {
+    lighting.ambient = scene.ambient;
+    lighting.lights.clear();
+    lighting.lights.extend_from_slice(&scene.lights);
+    lighting.material = scene.material;
+    lighting.eye = scene.camera.eye;
+    lighting.specular = options.specular;
 }
 
 pub(crate) fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
@@ -434,12 +456,11 @@ pub(crate) fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), Ren
         });
     }
     scene.camera.validate()?;
+    // A maximum over all corners (no early exit) so the loop vectorizes:
+    // it runs every frame over every corner.
+    let largest = scene.normals.corner.iter().fold(0, |m, &i| m.max(i));
     if scene.normals.corner.len() != scene.mesh.corners().len()
-        || scene
-            .normals
-            .corner
-            .iter()
-            .any(|&i| i as usize >= scene.normals.normals.len())
+        || (!scene.normals.corner.is_empty() && largest as usize >= scene.normals.normals.len())
     {
         return Err(RenderError::NormalsMismatch {
             normals: scene.normals.corner.len(),

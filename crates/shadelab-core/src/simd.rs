@@ -37,7 +37,7 @@ impl SimdLevel {
     pub fn detect() -> SimdLevel {
         #[cfg(target_arch = "x86_64")]
         {
-            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+            if avx2::Avx2::new().is_some() {
                 return SimdLevel::Avx2;
             }
         }
@@ -74,14 +74,15 @@ pub(crate) trait Kernel {
 pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, kernel: K) -> K::Output {
     #[cfg(target_arch = "x86_64")]
     {
-        #[target_feature(enable = "avx2,fma")]
+        #[target_feature(enable = "avx2,fma,popcnt,bmi1,bmi2")]
         unsafe fn with_avx2<K: Kernel>(kernel: K, simd: avx2::Avx2) -> K::Output {
             kernel.run(simd)
         }
         if level == SimdLevel::Avx2 {
             if let Some(simd) = avx2::Avx2::new() {
-                // SAFETY: `Avx2::new` succeeded, so the CPU has AVX2 and FMA,
-                // the only requirement of a `target_feature` function.
+                // SAFETY: `Avx2::new` succeeded, so the CPU has AVX2, FMA,
+                // POPCNT, BMI1 and BMI2, the only requirement of a
+                // `target_feature` function.
                 return unsafe { with_avx2(kernel, simd) };
             }
         }
@@ -96,8 +97,6 @@ pub(crate) trait Simd: Copy + Send + Sync {
     type F: Copy;
     /// 8 × i32; masks are all ones (true) or zero per lane.
     type I: Copy;
-    /// 8 × i64, for edge functions.
-    type E: Copy;
 
     fn f_splat(self, v: f32) -> Self::F;
     fn f_add(self, a: Self::F, b: Self::F) -> Self::F;
@@ -135,6 +134,12 @@ pub(crate) trait Simd: Copy + Send + Sync {
     fn i_and(self, a: Self::I, b: Self::I) -> Self::I;
     fn i_or(self, a: Self::I, b: Self::I) -> Self::I;
     fn i_max(self, a: Self::I, b: Self::I) -> Self::I;
+    /// Wrapping multiplication (the low 32 bits of the product).
+    fn i_mul(self, a: Self::I, b: Self::I) -> Self::I;
+    /// All ones where `a > b`, signed.
+    fn i_gt(self, a: Self::I, b: Self::I) -> Self::I;
+    /// `i` in lane `i`.
+    fn i_lanes(self) -> Self::I;
     fn i_shl(self, a: Self::I, bits: u32) -> Self::I;
     fn i_sra(self, a: Self::I, bits: u32) -> Self::I;
     /// Lanes of `a` where `mask` is set, of `b` elsewhere.
@@ -146,15 +151,34 @@ pub(crate) trait Simd: Copy + Send + Sync {
     /// A mask from bits 0..8.
     fn i_from_bits(self, bits: u32) -> Self::I;
 
+    /// The lanes whose bit is set in `bits` (0..256), moved to the front
+    /// in order; the other lanes are unspecified.
+    fn f_compress(self, v: Self::F, bits: u32) -> Self::F;
+    /// As [`Simd::f_compress`], for `i32` lanes.
+    fn i_compress(self, v: Self::I, bits: u32) -> Self::I;
+
     /// The low three bytes of each lane, packed: 8 RGB pixels.
     fn i_store_rgb(self, v: Self::I, dst: &mut [u8; 24]);
-
-    /// `start + step·i` in lane `i`.
-    fn e_ramp(self, start: i64, step: i64) -> Self::E;
-    fn e_add(self, a: Self::E, v: i64) -> Self::E;
-    /// Bits 0..8 of the lanes where all three are non-negative.
-    fn e_inside(self, a: Self::E, b: Self::E, c: Self::E) -> u32;
 }
+
+/// For each 8-bit mask, the indices of its set lanes in order, then zeros:
+/// the permutation that packs the selected lanes to the front.
+const COMPRESS: [[i32; 8]; 256] = {
+    let mut table = [[0i32; 8]; 256];
+    let mut mask = 0;
+    while mask < 256 {
+        let (mut lane, mut k) = (0, 0);
+        while lane < 8 {
+            if (mask >> lane) & 1 == 1 {
+                table[mask][k] = lane;
+                k += 1;
+            }
+            lane += 1;
+        }
+        mask += 1;
+    }
+    table
+};
 
 /// The portable backend: arrays and loops.
 #[derive(Debug, Clone, Copy)]
@@ -173,7 +197,6 @@ macro_rules! lanes {
 impl Simd for Portable {
     type F = [f32; 8];
     type I = [i32; 8];
-    type E = [i64; 8];
 
     #[inline(always)]
     fn f_splat(self, v: f32) -> [f32; 8] {
@@ -281,6 +304,18 @@ impl Simd for Portable {
         lanes!(|i| a[i].max(b[i]))
     }
     #[inline(always)]
+    fn i_mul(self, a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        lanes!(|i| a[i].wrapping_mul(b[i]))
+    }
+    #[inline(always)]
+    fn i_gt(self, a: [i32; 8], b: [i32; 8]) -> [i32; 8] {
+        lanes!(|i| -i32::from(a[i] > b[i]))
+    }
+    #[inline(always)]
+    fn i_lanes(self) -> [i32; 8] {
+        [0, 1, 2, 3, 4, 5, 6, 7]
+    }
+    #[inline(always)]
     fn i_shl(self, a: [i32; 8], bits: u32) -> [i32; 8] {
         lanes!(|i| a[i] << bits)
     }
@@ -310,23 +345,21 @@ impl Simd for Portable {
     }
 
     #[inline(always)]
+    fn f_compress(self, v: [f32; 8], bits: u32) -> [f32; 8] {
+        let order = &COMPRESS[bits as usize & 255];
+        lanes!(|i| v[order[i] as usize])
+    }
+    #[inline(always)]
+    fn i_compress(self, v: [i32; 8], bits: u32) -> [i32; 8] {
+        let order = &COMPRESS[bits as usize & 255];
+        lanes!(|i| v[order[i] as usize])
+    }
+
+    #[inline(always)]
     fn i_store_rgb(self, v: [i32; 8], dst: &mut [u8; 24]) {
         for (i, pixel) in dst.chunks_exact_mut(3).enumerate() {
             pixel.copy_from_slice(&v[i].to_le_bytes()[..3]);
         }
-    }
-
-    #[inline(always)]
-    fn e_ramp(self, start: i64, step: i64) -> [i64; 8] {
-        lanes!(|i| start + step * i as i64)
-    }
-    #[inline(always)]
-    fn e_add(self, a: [i64; 8], v: i64) -> [i64; 8] {
-        lanes!(|i| a[i] + v)
-    }
-    #[inline(always)]
-    fn e_inside(self, a: [i64; 8], b: [i64; 8], c: [i64; 8]) -> u32 {
-        (0..8).fold(0, |acc, i| acc | u32::from((a[i] | b[i] | c[i]) >= 0) << i)
     }
 }
 
@@ -336,14 +369,19 @@ mod avx2 {
 
     use super::Simd;
 
-    /// The AVX2 backend; a value proves the CPU has AVX2 and FMA.
+    /// The AVX2 backend; a value proves the CPU has AVX2 and FMA (and
+    /// POPCNT, BMI1 and BMI2, which every AVX2 processor has).
     #[derive(Debug, Clone, Copy)]
     pub(crate) struct Avx2(());
 
     impl Avx2 {
         pub fn new() -> Option<Avx2> {
-            (std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma"))
-                .then_some(Avx2(()))
+            (std::is_x86_feature_detected!("avx2")
+                && std::is_x86_feature_detected!("fma")
+                && std::is_x86_feature_detected!("popcnt")
+                && std::is_x86_feature_detected!("bmi1")
+                && std::is_x86_feature_detected!("bmi2"))
+            .then_some(Avx2(()))
         }
     }
 
@@ -354,7 +392,6 @@ mod avx2 {
     impl Simd for Avx2 {
         type F = __m256;
         type I = __m256i;
-        type E = [__m256i; 2];
 
         #[inline(always)]
         fn f_splat(self, v: f32) -> __m256 {
@@ -501,6 +538,21 @@ mod avx2 {
             unsafe { _mm256_max_epi32(a, b) }
         }
         #[inline(always)]
+        fn i_mul(self, a: __m256i, b: __m256i) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_mullo_epi32(a, b) }
+        }
+        #[inline(always)]
+        fn i_gt(self, a: __m256i, b: __m256i) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_cmpgt_epi32(a, b) }
+        }
+        #[inline(always)]
+        fn i_lanes(self) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe { _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7) }
+        }
+        #[inline(always)]
         fn i_shl(self, a: __m256i, bits: u32) -> __m256i {
             // SAFETY: see the impl.
             unsafe { _mm256_sll_epi32(a, _mm_cvtsi32_si128(bits as i32)) }
@@ -541,6 +593,19 @@ mod avx2 {
         }
 
         #[inline(always)]
+        fn f_compress(self, v: __m256, bits: u32) -> __m256 {
+            let order = &super::COMPRESS[bits as usize & 255];
+            // SAFETY: see the impl; `order` is 8 lanes.
+            unsafe { _mm256_permutevar8x32_ps(v, _mm256_loadu_si256(order.as_ptr().cast())) }
+        }
+        #[inline(always)]
+        fn i_compress(self, v: __m256i, bits: u32) -> __m256i {
+            let order = &super::COMPRESS[bits as usize & 255];
+            // SAFETY: see the impl; `order` is 8 lanes.
+            unsafe { _mm256_permutevar8x32_epi32(v, _mm256_loadu_si256(order.as_ptr().cast())) }
+        }
+
+        #[inline(always)]
         fn i_store_rgb(self, v: __m256i, dst: &mut [u8; 24]) {
             // SAFETY: see the impl; the first store writes bytes 0..16, the
             // second and third 12..20 and 20..24, all within `dst`.
@@ -556,37 +621,6 @@ mod avx2 {
                 _mm_storeu_si128(p.cast(), low);
                 _mm_storel_epi64(p.add(12).cast(), high);
                 (p.add(20) as *mut i32).write_unaligned(_mm_extract_epi32::<2>(high));
-            }
-        }
-
-        #[inline(always)]
-        fn e_ramp(self, start: i64, step: i64) -> [__m256i; 2] {
-            // SAFETY: see the impl.
-            unsafe {
-                let s = |k: i64| start + step * k;
-                [
-                    _mm256_setr_epi64x(s(0), s(1), s(2), s(3)),
-                    _mm256_setr_epi64x(s(4), s(5), s(6), s(7)),
-                ]
-            }
-        }
-        #[inline(always)]
-        fn e_add(self, a: [__m256i; 2], v: i64) -> [__m256i; 2] {
-            // SAFETY: see the impl.
-            unsafe {
-                let v = _mm256_set1_epi64x(v);
-                [_mm256_add_epi64(a[0], v), _mm256_add_epi64(a[1], v)]
-            }
-        }
-        #[inline(always)]
-        fn e_inside(self, a: [__m256i; 2], b: [__m256i; 2], c: [__m256i; 2]) -> u32 {
-            // SAFETY: see the impl.
-            unsafe {
-                let lo = _mm256_or_si256(_mm256_or_si256(a[0], b[0]), c[0]);
-                let hi = _mm256_or_si256(_mm256_or_si256(a[1], b[1]), c[1]);
-                let outside = _mm256_movemask_pd(_mm256_castsi256_pd(lo))
-                    | _mm256_movemask_pd(_mm256_castsi256_pd(hi)) << 4;
-                !(outside as u32) & 0xff
             }
         }
     }
@@ -661,6 +695,11 @@ impl<S: Simd> Vf<S> {
     pub fn select(mask: Vi<S>, yes: Self, no: Self) -> Self {
         Vf(yes.1.f_select(mask.0, yes.0, no.0), yes.1)
     }
+    /// The lanes set in `bits`, packed to the front.
+    #[inline(always)]
+    pub fn compress(self, bits: u32) -> Self {
+        Vf(self.1.f_compress(self.0, bits), self.1)
+    }
     /// Truncates towards zero; lanes must lie within ±2^31.
     #[inline(always)]
     pub fn to_i(self) -> Vi<S> {
@@ -680,6 +719,32 @@ impl<S: Simd> Vi<S> {
     #[inline(always)]
     pub fn from_mask_bits(s: S, bits: u32) -> Self {
         Vi(s.i_from_bits(bits), s)
+    }
+    /// 0, 1, … 7.
+    #[inline(always)]
+    pub fn ramp(s: S) -> Self {
+        Vi(s.i_lanes(), s)
+    }
+    /// All ones where `self > o`.
+    #[inline(always)]
+    pub fn gt(self, o: Self) -> Self {
+        Vi(self.1.i_gt(self.0, o.0), self.1)
+    }
+    /// All ones where `self < o`.
+    #[inline(always)]
+    pub fn lt(self, o: Self) -> Self {
+        Vi(self.1.i_gt(o.0, self.0), self.1)
+    }
+    /// Bits 0..8 of the lanes where `self == o`.
+    #[inline(always)]
+    pub fn eq_bits(self, o: Self) -> u32 {
+        let s = self.1;
+        !(Vi(s.i_gt(self.0, o.0), s) | Vi(s.i_gt(o.0, self.0), s)).mask_bits() & 0xff
+    }
+    /// The lanes set in `bits`, packed to the front.
+    #[inline(always)]
+    pub fn compress(self, bits: u32) -> Self {
+        Vi(self.1.i_compress(self.0, bits), self.1)
     }
     #[inline(always)]
     pub fn mask_bits(self) -> u32 {
@@ -728,6 +793,7 @@ binary!(Vf, Sub, sub, f_sub);
 binary!(Vf, Mul, mul, f_mul);
 binary!(Vi, Add, add, i_add);
 binary!(Vi, Sub, sub, i_sub);
+binary!(Vi, Mul, mul, i_mul);
 binary!(Vi, BitAnd, bitand, i_and);
 binary!(Vi, BitOr, bitor, i_or);
 
@@ -739,20 +805,48 @@ impl<S: Simd> Mul<f32> for Vf<S> {
     }
 }
 
-/// `x^p` for a whole exponent `p` in 1..=1024, by repeated squaring
-/// (at most 19 multiplications, exact to a few ulps).
+/// `x^p` for a whole exponent `p` in 1..=1024: with `p = m·2^k`, `m` odd,
+/// `x^m` by repeated squaring, then `k` squarings (for the usual powers of
+/// two no other multiplication; at most 19 in all, exact to a few ulps).
 #[inline(always)]
 pub(crate) fn pow_whole<S: Simd>(x: Vf<S>, p: u32) -> Vf<S> {
-    let mut result = x.splat_like(1.0);
+    let k = p.trailing_zeros();
+    let mut m = p >> k >> 1;
+    let mut result = x;
     let mut base = x;
-    let mut e = p;
-    while e > 0 {
-        if e & 1 == 1 {
+    while m > 0 {
+        base = base * base;
+        if m & 1 == 1 {
             result = result * base;
         }
-        e >>= 1;
-        if e > 0 {
-            base = base * base;
+        m >>= 1;
+    }
+    for _ in 0..k {
+        result = result * result;
+    }
+    result
+}
+
+/// [`pow_whole`] of `G` vectors at once, step by step, so that their
+/// chains of squarings overlap.
+#[inline(always)]
+pub(crate) fn pow_whole_groups<S: Simd, const G: usize>(x: [Vf<S>; G], p: u32) -> [Vf<S>; G] {
+    let k = p.trailing_zeros();
+    let mut m = p >> k >> 1;
+    let mut result = x;
+    let mut base = x;
+    while m > 0 {
+        for g in 0..G {
+            base[g] = base[g] * base[g];
+            if m & 1 == 1 {
+                result[g] = result[g] * base[g];
+            }
+        }
+        m >>= 1;
+    }
+    for _ in 0..k {
+        for r in &mut result {
+            *r = *r * *r;
         }
     }
     result
@@ -858,31 +952,35 @@ mod tests {
         }
     }
 
-    struct Edges;
+    struct Lanes;
 
-    impl Kernel for Edges {
-        type Output = (u32, u32, u32);
+    impl Kernel for Lanes {
+        type Output = ([f32; 8], u32, u32, [i32; 8]);
         #[inline(always)]
-        fn run<S: Simd>(self, s: S) -> (u32, u32, u32) {
-            let a = s.e_ramp(-3, 1);
-            let b = s.e_ramp(0, 0);
-            let c = s.e_add(s.e_ramp(1 << 40, -(1 << 38)), 0);
+        fn run<S: Simd>(self, s: S) -> ([f32; 8], u32, u32, [i32; 8]) {
             let mask = Vi::from_mask_bits(s, 0b1010_0110);
+            let values = Vf::load(s, &[0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
+            let mut packed = [0.0; 8];
+            values.compress(0b1010_0110).store(&mut packed);
+            let ramp = Vi::ramp(s) * Vi::splat(s, 3);
+            let mut above = [0; 8];
+            s.i_store(ramp.gt(Vi::splat(s, 7)).0, &mut above);
             (
-                s.e_inside(a, b, c),
+                packed,
                 mask.mask_bits(),
                 (Vi::splat(s, -1) & mask).mask_bits(),
+                above,
             )
         }
     }
 
     #[test]
-    fn edge_masks() {
+    fn lane_operations() {
         for level in [SimdLevel::Portable, SimdLevel::detect()] {
-            assert_eq!(
-                dispatch(level, Edges),
-                (0b0001_1000, 0b1010_0110, 0b1010_0110)
-            );
+            let (packed, bits, and, above) = dispatch(level, Lanes);
+            assert_eq!(packed[..4], [1.0, 2.0, 5.0, 7.0], "{level:?}");
+            assert_eq!((bits, and), (0b1010_0110, 0b1010_0110), "{level:?}");
+            assert_eq!(above, [0, 0, 0, -1, -1, -1, -1, -1], "{level:?}");
         }
     }
 }

@@ -1,16 +1,27 @@
 //! The inner loop: one band of image rows, its triangles, blocks of 8 pixels.
 //!
-//! A band owns a depth buffer and a packed-colour buffer for its rows, so
-//! bands run in parallel with no sharing and the buffers stay in cache. For
-//! each triangle binned to the band, in submission order, each row of its
-//! bounding box is walked in blocks of 8 pixels aligned to multiples of 8:
+//! A band has a depth buffer and a packed-colour buffer for its rows (one
+//! set per thread, reused band after band, so they stay in cache). For each
+//! triangle binned to the band, in submission order, each row of its
+//! bounding box within the band is walked in blocks of 8 pixels aligned to
+//! multiples of 8, in one of two ways chosen at setup (`setup::Walk`):
 //!
-//! 1. coverage: the three edge functions in 8 × `i64` lanes, one add per
-//!    block, a lane in when all three are ≥ 0 (the bias is in `c`);
-//! 2. depth test "less" against the band's buffer, depth from its plane;
-//! 3. shading, specialised per method by the [`Shader`] type parameter:
-//!    flat writes a constant, Gouraud converts interpolated colours, Phong
-//!    evaluates the reflection model in 8 lanes.
+//! * **blocks** (small triangles, nearly all of a dense mesh): the three
+//!   edge functions in 8 × `i32` lanes, one add per edge and block, a lane
+//!   in when all three are ≥ 0 (the top-left bias is in `c`). `i32` is exact
+//!   here because setup checked the functions' range over the box;
+//! * **spans** (large triangles): per row, each edge's boundary column is
+//!   found exactly (see [`span`]) and the span between them is filled with
+//!   no edge arithmetic per pixel.
+//!
+//! Then per block: depth test "less" (depth from its plane), and shading
+//! specialised per method by the [`Shader`] type parameter. Phong does not
+//! shade block by block: small triangles leave most lanes of a block empty,
+//! so fragments that pass the depth test are packed into a queue and lit 8
+//! at a time (two blocks of 8 lit together, so that their long dependency
+//! chains overlap), and their colours written back in the order they were
+//! queued (a later fragment of the same pixel is written later, as without
+//! the queue; eight queued pixels in a row are written with one store).
 //!
 //! Nothing here allocates. Everything is `#[inline(always)]` so that
 //! [`crate::simd::dispatch`] compiles it for AVX2 and for the portable path.
@@ -18,230 +29,10 @@
 // Loops over the three edges, channels and planes index several arrays at once.
 #![allow(clippy::needless_range_loop)]
 
-use glam::Vec3;
-
-use super::setup::{Plane, Triangle, BAND_ROWS};
-use crate::lighting::{LightKind, Lighting, Specular};
+use super::setup::{plane_count, Plane, Triangle, Walk, BAND_ROWS};
+use super::shade::{Shader, MAX_ATTRS};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
-use crate::simd::{pow_unit, pow_whole, Simd, Vf, Vi};
-
-/// The most attributes a method interpolates (Phong: normal and position).
-pub(crate) const MAX_ATTRS: usize = 6;
-
-/// Per-method colouring of a block of fragments.
-pub(crate) trait Shader: Sync {
-    /// How many attributes the method interpolates.
-    const ATTRS: usize;
-    /// Colours of 8 fragments, packed `r | g << 8 | b << 16`.
-    fn shade<S: Simd>(&self, s: S, triangle: &Triangle, attrs: &[Vf<S>; MAX_ATTRS]) -> Vi<S>;
-}
-
-/// Flat shading: the triangle's polygon was lit once, at setup.
-pub(crate) struct FlatShader;
-
-impl Shader for FlatShader {
-    const ATTRS: usize = 0;
-    #[inline(always)]
-    fn shade<S: Simd>(&self, s: S, triangle: &Triangle, _: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        Vi::splat(s, triangle.color as i32)
-    }
-}
-
-/// Gouraud shading: the vertex colours, interpolated.
-pub(crate) struct GouraudShader;
-
-impl Shader for GouraudShader {
-    const ATTRS: usize = 3;
-    #[inline(always)]
-    fn shade<S: Simd>(&self, _: S, _: &Triangle, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        pack(a[0], a[1], a[2])
-    }
-}
-
-/// One light, prepared for 8 lanes.
-#[derive(Debug, Clone, Copy)]
-struct LaneLight {
-    /// Point light position, or `None` for a directional light.
-    position: Option<Vec3>,
-    /// Unit vector towards a directional light.
-    towards: Vec3,
-    /// `Id·Kd` per channel.
-    diffuse: [f32; 3],
-    /// `Is·Ks` per channel.
-    specular: [f32; 3],
-}
-
-/// Phong shading: the reflection model per pixel, as [`Lighting::eval`].
-pub(crate) struct PhongShader {
-    ambient: [f32; 3],
-    eye: Vec3,
-    lights: Vec<LaneLight>,
-    shininess: f32,
-    power: Power,
-    blinn: bool,
-}
-
-/// How `max(0, r·v)^p` is computed for the material's `p`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Power {
-    /// A whole `p` in 1..=1024: repeated squaring.
-    Whole(u32),
-    /// Other `p` in (0, 4096]: exp2(p·log2(x)) by polynomials.
-    Fraction,
-    /// Anything else (0, negative, huge): `powf` lane by lane.
-    Scalar,
-}
-
-impl PhongShader {
-    pub fn new(lighting: &Lighting) -> PhongShader {
-        let m = &lighting.material;
-        let lights = lighting
-            .lights
-            .iter()
-            .map(|light| {
-                let i = light.color * light.intensity;
-                let (position, towards) = match light.kind {
-                    LightKind::Point { position } => (Some(position), Vec3::ZERO),
-                    LightKind::Directional { direction } => {
-                        (None, (-direction).normalize_or_zero())
-                    }
-                };
-                LaneLight {
-                    position,
-                    towards,
-                    diffuse: (i * m.kd).to_array(),
-                    specular: (i * m.ks).to_array(),
-                }
-            })
-            .collect();
-        let p = m.shininess;
-        let power = if p.fract() == 0.0 && (1.0..=1024.0).contains(&p) {
-            Power::Whole(p as u32)
-        } else if p > 0.0 && p <= 4096.0 {
-            Power::Fraction
-        } else {
-            Power::Scalar
-        };
-        PhongShader {
-            ambient: (lighting.ambient * m.ka).to_array(),
-            eye: lighting.eye,
-            lights,
-            shininess: p,
-            power,
-            blinn: lighting.specular == Specular::BlinnPhong,
-        }
-    }
-
-    #[inline(always)]
-    fn power<S: Simd>(&self, x: Vf<S>) -> Vf<S> {
-        match self.power {
-            Power::Whole(p) => pow_whole(x, p),
-            Power::Fraction => pow_unit(x, self.shininess),
-            Power::Scalar => power_scalar(x, self.shininess),
-        }
-    }
-}
-
-/// `x^p` lane by lane with `powf`, for exponents outside `pow_unit`'s range.
-#[cold]
-fn power_scalar<S: Simd>(x: Vf<S>, p: f32) -> Vf<S> {
-    let mut lanes = [0.0; 8];
-    x.store(&mut lanes);
-    for v in &mut lanes {
-        *v = v.powf(p);
-    }
-    Vf::load(x.1, &lanes)
-}
-
-/// `v / |v|`, or zero where `|v|` is zero or not finite (glam's `normalize_or_zero`).
-#[inline(always)]
-fn normalize_or_zero<S: Simd>(v: [Vf<S>; 3]) -> [Vf<S>; 3] {
-    let len2 = v[0].mul_add(v[0], v[1].mul_add(v[1], v[2] * v[2]));
-    let ok = len2.gt(len2.splat_like(0.0)) & len2.lt(len2.splat_like(f32::INFINITY));
-    let scale = Vf::select(ok, len2.rsqrt(), len2.splat_like(0.0));
-    [v[0] * scale, v[1] * scale, v[2] * scale]
-}
-
-impl Shader for PhongShader {
-    const ATTRS: usize = 6;
-    #[inline(always)]
-    fn shade<S: Simd>(&self, s: S, triangle: &Triangle, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        let flip = triangle.flip;
-        self.light(
-            s,
-            &[a[0] * flip, a[1] * flip, a[2] * flip, a[3], a[4], a[5]],
-        )
-    }
-}
-
-impl PhongShader {
-    /// The reflection model at 8 points `a[3..6]` with normals `a[0..3]`
-    /// (normalized here), as packed colours.
-    #[inline(always)]
-    pub fn light<S: Simd>(&self, s: S, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        let n = normalize_or_zero([a[0], a[1], a[2]]);
-        let p = [a[3], a[4], a[5]];
-        let view = towards(s, self.eye, &p);
-        let mut out = [
-            Vf::splat(s, self.ambient[0]),
-            Vf::splat(s, self.ambient[1]),
-            Vf::splat(s, self.ambient[2]),
-        ];
-        let zero = Vf::splat(s, 0.0);
-        for light in &self.lights {
-            let l = match light.position {
-                Some(q) => towards(s, q, &p),
-                None => [
-                    Vf::splat(s, light.towards.x),
-                    Vf::splat(s, light.towards.y),
-                    Vf::splat(s, light.towards.z),
-                ],
-            };
-            let n_dot_l = n[0].mul_add(l[0], n[1].mul_add(l[1], n[2] * l[2]));
-            let lit = n_dot_l.gt(zero);
-            let cosine = if self.blinn {
-                let h = normalize_or_zero([l[0] + view[0], l[1] + view[1], l[2] + view[2]]);
-                n[0].mul_add(h[0], n[1].mul_add(h[1], n[2] * h[2]))
-            } else {
-                let twice = n_dot_l * 2.0;
-                let r = [
-                    n[0] * twice - l[0],
-                    n[1] * twice - l[1],
-                    n[2] * twice - l[2],
-                ];
-                r[0].mul_add(view[0], r[1].mul_add(view[1], r[2] * view[2]))
-            };
-            let spec = self.power(cosine.max(zero));
-            for k in 0..3 {
-                let add = n_dot_l.mul_add(Vf::splat(s, light.diffuse[k]), spec * light.specular[k]);
-                out[k] = out[k] + Vf::select(lit, add, zero);
-            }
-        }
-        pack(out[0], out[1], out[2])
-    }
-}
-
-/// The unit vectors from points `p` towards `q` (zero where they coincide).
-#[inline(always)]
-fn towards<S: Simd>(s: S, q: Vec3, p: &[Vf<S>; 3]) -> [Vf<S>; 3] {
-    normalize_or_zero([
-        Vf::splat(s, q.x) - p[0],
-        Vf::splat(s, q.y) - p[1],
-        Vf::splat(s, q.z) - p[2],
-    ])
-}
-
-/// Colours in [0, 1] (clamped) to packed bytes, rounding as [`crate::Rgb8::from_rgb`].
-#[inline(always)]
-fn pack<S: Simd>(r: Vf<S>, g: Vf<S>, b: Vf<S>) -> Vi<S> {
-    byte(r) | byte(g).shl(8) | byte(b).shl(16)
-}
-
-/// A channel in [0, 1] (clamped) to 0..=255, rounding half up.
-#[inline(always)]
-fn byte<S: Simd>(c: Vf<S>) -> Vi<S> {
-    (c.max(c.splat_like(0.0)).min(c.splat_like(1.0)) * 255.0 + c.splat_like(0.5)).to_i()
-}
+use crate::simd::{Simd, Vf, Vi};
 
 /// A band's working storage, kept between frames.
 #[derive(Debug, Default)]
@@ -255,10 +46,21 @@ pub(crate) struct Band {
     /// Polygon stamps for self-crossing polygons, cleared when first used in a frame.
     stamp: Vec<u32>,
     stamp_clean: bool,
+    /// Fragments waiting to be shaded (deferred shaders).
+    queue: Queue,
     /// Fragments that passed the depth test this frame.
     pub fragments: u64,
     /// Pixels drawn this frame.
     pub covered: u64,
+}
+
+/// Fragments of a deferred shader, packed into whole lanes: their
+/// attributes and buffer indices, in the order they passed the depth test.
+#[derive(Debug, Default)]
+struct Queue {
+    attrs: [[f32; 24]; MAX_ATTRS],
+    at: [i32; 24],
+    len: usize,
 }
 
 /// What a band pass does with covered pixels.
@@ -279,6 +81,7 @@ impl Band {
         let len = self.stride * rows as usize;
         self.fragments = 0;
         self.covered = 0;
+        self.queue.len = 0;
         self.stamp_clean = false;
         match pass {
             Pass::Shade => {
@@ -358,8 +161,7 @@ impl Band {
         &mut self.stamp
     }
 
-    /// Draws one triangle's rows within this band (rows `band_y0..band_y1`
-    /// of an image `width` pixels wide).
+    /// Draws one triangle's rows within this band (rows `band_y0..band_y1`).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub fn draw<S: Simd, Sh: Shader>(
@@ -368,110 +170,259 @@ impl Band {
         t: &Triangle,
         planes: &[Plane],
         shader: &Sh,
+        lanes: &Sh::Lanes<S>,
         interpolation: Interpolation,
         band_y0: u32,
         band_y1: u32,
-        width: u32,
         pass: Pass,
     ) {
-        let rows = (t.y0.max(band_y0 as i32))..(t.y1.min(band_y1 as i32));
-        let first_block = t.x0 & !7;
-        let block_count = (t.x1 - first_block + 7) / 8;
-        let lane_step = [
-            t.a[0] * SUBPIXEL_ONE,
-            t.a[1] * SUBPIXEL_ONE,
-            t.a[2] * SUBPIXEL_ONE,
-        ];
-        let lane_offsets = [
-            s.e_ramp(0, lane_step[0]),
-            s.e_ramp(0, lane_step[1]),
-            s.e_ramp(0, lane_step[2]),
-        ];
-        let block_step = [lane_step[0] * 8, lane_step[1] * 8, lane_step[2] * 8];
-        let x_start = i64::from(first_block) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-        // The lanes of a row's last block that lie inside the image.
-        let last_block_x = first_block + (block_count - 1) * 8;
-        let last_block_bits = if last_block_x + 8 > width as i32 {
-            (1u32 << (width as i32 - last_block_x)) - 1
-        } else {
-            0xff
-        };
-        let plane_count = 2 + Sh::ATTRS;
-        let lanes_x = Vf::lanes(s) + Vf::splat(s, (first_block - t.x0) as f32);
+        let rows = t.y0.max(band_y0 as i32)..t.y1.min(band_y1 as i32);
+        if rows.is_empty() {
+            return;
+        }
         let mut dx = [Vf::splat(s, 0.0); 2 + MAX_ATTRS];
-        for j in 0..plane_count {
+        for j in 0..plane_count(Sh::ATTRS) {
             dx[j] = Vf::splat(s, planes[j].dx);
         }
+        let fill = Fill {
+            t,
+            planes,
+            shader,
+            shader_lanes: lanes,
+            interpolation,
+            pass,
+            dx,
+            lanes: Vf::lanes(s),
+        };
+        match t.walk {
+            Walk::Blocks => self.walk_blocks(s, &fill, rows, band_y0),
+            Walk::Spans => self.walk_spans(s, &fill, rows, band_y0),
+        }
+    }
 
+    /// Blocks of 8 pixels along each row of the bounding box, with the edge
+    /// functions in `i32` lanes: one add per edge per block, no multiply.
+    #[inline(always)]
+    fn walk_blocks<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        rows: std::ops::Range<i32>,
+        band_y0: u32,
+    ) {
+        let t = f.t;
+        let first_block = t.x0 & !7;
+        let block_count = (t.x1 - first_block + 7) / 8;
+        let x_start = i64::from(first_block) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let y_start = i64::from(rows.start) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let lane_index = Vi::ramp(s);
+        let mut row_e = [Vi::splat(s, 0); 3];
+        let mut block_step = [Vi::splat(s, 0); 3];
+        let mut row_step = [Vi::splat(s, 0); 3];
+        for i in 0..3 {
+            // `Triangle::edges` checked that these stay within i32 over the box.
+            let at_start = i64::from(t.a[i]) * x_start + i64::from(t.b[i]) * y_start + t.c[i];
+            let a = t.a[i] * SUBPIXEL_ONE as i32;
+            row_e[i] = Vi::splat(s, at_start as i32) + lane_index * Vi::splat(s, a);
+            block_step[i] = Vi::splat(s, a * 8);
+            row_step[i] = Vi::splat(s, t.b[i] * SUBPIXEL_ONE as i32);
+        }
+        // Lanes of the last block past the box (and so maybe past the image).
+        let last_lanes = lane_index.lt(Vi::splat(s, t.x1 - (first_block + (block_count - 1) * 8)));
+        let minus_one = Vi::splat(s, -1);
         for y in rows {
-            let y_centre = i64::from(y) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-            let mut e = [0i64; 3];
-            for i in 0..3 {
-                e[i] = t.a[i] * x_start + t.b[i] * y_centre + t.c[i];
-            }
-            let dy = (y - t.y0) as f32;
-            let mut row_value = [0f32; 2 + MAX_ATTRS];
-            for j in 0..plane_count {
-                row_value[j] = planes[j].at_origin + planes[j].dy * dy;
-            }
             let row_start = (y as u32 - band_y0) as usize * self.stride;
+            let row = f.row_values(y);
+            let mut e = row_e;
             for block in 0..block_count {
-                let mut bits = s.e_inside(
-                    s.e_add(lane_offsets[0], e[0]),
-                    s.e_add(lane_offsets[1], e[1]),
-                    s.e_add(lane_offsets[2], e[2]),
-                );
+                let mut inside = (e[0] | e[1] | e[2]).gt(minus_one);
                 for i in 0..3 {
-                    e[i] += block_step[i];
+                    e[i] = e[i] + block_step[i];
                 }
                 if block == block_count - 1 {
-                    bits &= last_block_bits;
+                    inside = inside & last_lanes;
                 }
-                if bits == 0 {
-                    continue;
+                if inside.mask_bits() != 0 {
+                    let x = first_block + block * 8;
+                    self.block(s, f, inside, row_start + x as usize, x, &row);
                 }
-                let at = row_start + (first_block + block * 8) as usize;
-                if t.once != 0 {
-                    bits = self.once_per_pixel(bits, at, t.once);
-                }
-                if pass == Pass::Count {
-                    for (i, count) in self.counts[at..at + 8].iter_mut().enumerate() {
-                        *count += (bits >> i) & 1;
-                    }
-                    continue;
-                }
-                let x = lanes_x + Vf::splat(s, (block * 8) as f32);
-                let depth = x.mul_add(dx[0], Vf::splat(s, row_value[0]));
-                let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
-                let stored = Vf::load(s, depth_slot);
-                let bits = bits & depth.lt(stored).mask_bits();
-                if bits == 0 {
-                    continue;
-                }
-                let mask = Vi::from_mask_bits(s, bits);
-                Vf::select(mask, depth, stored).store(depth_slot);
-                self.fragments += u64::from(bits.count_ones());
-
-                let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
-                match interpolation {
-                    Interpolation::Perspective if Sh::ATTRS > 0 => {
-                        let inv_w = x.mul_add(dx[1], Vf::splat(s, row_value[1]));
-                        let w = inv_w.recip();
-                        for k in 0..Sh::ATTRS {
-                            attrs[k] = x.mul_add(dx[2 + k], Vf::splat(s, row_value[2 + k])) * w;
-                        }
-                    }
-                    _ => {
-                        for k in 0..Sh::ATTRS {
-                            attrs[k] = x.mul_add(dx[2 + k], Vf::splat(s, row_value[2 + k]));
-                        }
-                    }
-                }
-                let colors = shader.shade(s, t, &attrs);
-                let color_slot: &mut [i32; 8] = (&mut self.color[at..at + 8]).try_into().unwrap();
-                let old = Vi(s.i_load(color_slot), s);
-                s.i_store(Vi::select(mask, colors, old).0, color_slot);
             }
+            for i in 0..3 {
+                row_e[i] = row_e[i] + row_step[i];
+            }
+        }
+    }
+
+    /// Each row's covered span `[left, right)`, found exactly per edge, then
+    /// filled in blocks of 8 with no edge arithmetic per pixel.
+    #[inline(always)]
+    fn walk_spans<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        rows: std::ops::Range<i32>,
+        band_y0: u32,
+    ) {
+        let t = f.t;
+        let lane_index = Vi::ramp(s);
+        for y in rows {
+            let Some((left, right)) = span(t, y) else {
+                continue;
+            };
+            let row_start = (y as u32 - band_y0) as usize * self.stride;
+            let row = f.row_values(y);
+            let (from, to) = (Vi::splat(s, left - 1), Vi::splat(s, right));
+            let mut x = left & !7;
+            while x < right {
+                let lanes = lane_index + Vi::splat(s, x);
+                let inside = lanes.gt(from) & to.gt(lanes);
+                self.block(s, f, inside, row_start + x as usize, x, &row);
+                x += 8;
+            }
+        }
+    }
+
+    /// Depth-tests, shades and writes the lanes of `inside` in the block at
+    /// column `x` (buffer index `at`); `row` holds the planes' values at the
+    /// start of this row.
+    #[inline(always)]
+    fn block<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        inside: Vi<S>,
+        at: usize,
+        x: i32,
+        row: &[f32; 2 + MAX_ATTRS],
+    ) {
+        let mut inside = inside;
+        if f.t.once != 0 {
+            let bits = self.once_per_pixel(inside.mask_bits(), at, f.t.once);
+            inside = Vi::from_mask_bits(s, bits);
+        }
+        if f.pass == Pass::Count {
+            let bits = inside.mask_bits();
+            for (i, count) in self.counts[at..at + 8].iter_mut().enumerate() {
+                *count += (bits >> i) & 1;
+            }
+            return;
+        }
+        let x = f.lanes + Vf::splat(s, (x - f.t.x0) as f32);
+        let depth = x.mul_add(f.dx[0], Vf::splat(s, row[0]));
+        let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
+        let stored = Vf::load(s, depth_slot);
+        let pass = inside & depth.lt(stored);
+        let bits = pass.mask_bits();
+        if bits == 0 {
+            return;
+        }
+        Vf::select(pass, depth, stored).store(depth_slot);
+        self.fragments += u64::from(bits.count_ones());
+
+        let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
+        match f.interpolation {
+            Interpolation::Perspective if Sh::ATTRS > 0 => {
+                let inv_w = x.mul_add(f.dx[1], Vf::splat(s, row[1]));
+                let w = inv_w.recip();
+                for k in 0..Sh::ATTRS {
+                    attrs[k] = x.mul_add(f.dx[2 + k], Vf::splat(s, row[2 + k])) * w;
+                }
+            }
+            _ => {
+                for k in 0..Sh::ATTRS {
+                    attrs[k] = x.mul_add(f.dx[2 + k], Vf::splat(s, row[2 + k]));
+                }
+            }
+        }
+        if Sh::DEFERRED {
+            if f.t.flip != 1.0 {
+                for k in 0..3 {
+                    attrs[k] = attrs[k] * f.t.flip;
+                }
+            }
+            self.enqueue(s, f.shader, f.shader_lanes, &attrs, bits, at);
+            return;
+        }
+        let colors = f.shader.shade(f.shader_lanes, s, f.t, &attrs);
+        let color_slot: &mut [i32; 8] = (&mut self.color[at..at + 8]).try_into().unwrap();
+        let old = Vi(s.i_load(color_slot), s);
+        s.i_store(Vi::select(pass, colors, old).0, color_slot);
+    }
+
+    /// Queues the fragments of `bits` (block at buffer index `at`), and
+    /// shades 16 of them once there are 16.
+    #[inline(always)]
+    fn enqueue<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        shader: &Sh,
+        lanes: &Sh::Lanes<S>,
+        attrs: &[Vf<S>; MAX_ATTRS],
+        bits: u32,
+        at: usize,
+    ) {
+        let q = &mut self.queue;
+        let len = q.len;
+        for k in 0..Sh::ATTRS {
+            let slot: &mut [f32; 8] = (&mut q.attrs[k][len..len + 8]).try_into().unwrap();
+            attrs[k].compress(bits).store(slot);
+        }
+        let index = Vi::ramp(s) + Vi::splat(s, at as i32);
+        let slot: &mut [i32; 8] = (&mut q.at[len..len + 8]).try_into().unwrap();
+        s.i_store(index.compress(bits).0, slot);
+        q.len = len + bits.count_ones() as usize;
+        if q.len >= 16 {
+            self.shade_queue(s, shader, lanes);
+        }
+    }
+
+    /// Shades the first (up to) 16 queued fragments, as two blocks lit
+    /// together, and writes their colours.
+    #[inline(always)]
+    fn shade_queue<S: Simd, Sh: Shader>(&mut self, s: S, shader: &Sh, lanes: &Sh::Lanes<S>) {
+        let q = &mut self.queue;
+        let mut first = [Vf::splat(s, 0.0); MAX_ATTRS];
+        let mut second = [Vf::splat(s, 0.0); MAX_ATTRS];
+        for k in 0..Sh::ATTRS {
+            first[k] = Vf::load(s, q.attrs[k][..8].try_into().unwrap());
+            second[k] = Vf::load(s, q.attrs[k][8..16].try_into().unwrap());
+        }
+        let colors = shader.light_pair(lanes, s, &first, &second);
+        let count = q.len.min(16);
+        for (g, colors) in colors.into_iter().enumerate() {
+            let at: &[i32; 8] = q.at[8 * g..8 * g + 8].try_into().unwrap();
+            let n = count.saturating_sub(8 * g).min(8);
+            let in_a_row = Vi(s.i_load(at), s).eq_bits(Vi::ramp(s) + Vi::splat(s, at[0]));
+            if n == 8 && in_a_row == 0xff {
+                // Eight fragments in a row (a whole block): one store.
+                let start = at[0] as usize;
+                s.i_store(
+                    colors.0,
+                    (&mut self.color[start..start + 8]).try_into().unwrap(),
+                );
+            } else {
+                let mut values = [0i32; 8];
+                s.i_store(colors.0, &mut values);
+                for i in 0..n {
+                    self.color[at[i] as usize] = values[i];
+                }
+            }
+        }
+        // Later fragments move to the front, keeping their order.
+        for k in 0..Sh::ATTRS {
+            let rest = Vf::load(s, q.attrs[k][16..].try_into().unwrap());
+            rest.store((&mut q.attrs[k][..8]).try_into().unwrap());
+        }
+        let rest = s.i_load(q.at[16..].try_into().unwrap());
+        s.i_store(rest, (&mut q.at[..8]).try_into().unwrap());
+        q.len -= count;
+    }
+
+    /// Shades whatever is still queued; called once the band's triangles are drawn.
+    #[inline(always)]
+    pub fn flush<S: Simd, Sh: Shader>(&mut self, s: S, shader: &Sh, lanes: &Sh::Lanes<S>) {
+        if Sh::DEFERRED && self.queue.len > 0 {
+            self.shade_queue(s, shader, lanes);
         }
     }
 
@@ -491,6 +442,83 @@ impl Band {
         }
         out
     }
+}
+
+/// What every block of one triangle needs.
+struct Fill<'a, S: Simd, Sh: Shader> {
+    t: &'a Triangle,
+    planes: &'a [Plane],
+    shader: &'a Sh,
+    shader_lanes: &'a Sh::Lanes<S>,
+    interpolation: Interpolation,
+    pass: Pass,
+    /// Each plane's step per pixel along x, in all lanes.
+    dx: [Vf<S>; 2 + MAX_ATTRS],
+    /// 0, 1, … 7.
+    lanes: Vf<S>,
+}
+
+impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
+    /// The planes' values at the triangle's first column on row `y`.
+    #[inline(always)]
+    fn row_values(&self, y: i32) -> [f32; 2 + MAX_ATTRS] {
+        let dy = (y - self.t.y0) as f32;
+        let mut row = [0f32; 2 + MAX_ATTRS];
+        for j in 0..plane_count(Sh::ATTRS) {
+            row[j] = self.planes[j].at_origin + self.planes[j].dy * dy;
+        }
+        row
+    }
+}
+
+/// The columns `[left, right)` of row `y` whose centres are inside the
+/// triangle, within its bounding box; `None` when there are none.
+///
+/// Per edge, the test `a·(256·X + 128) + r ≥ 0` (with `r = b·y_s + c`) is
+/// monotonic in the column X: the boundary is estimated with one `f64`
+/// multiplication by a reciprocal and then settled by evaluating the exact
+/// integer test at the estimate and its neighbour. The estimate is first
+/// clamped next to the box, where it is within one column of the truth.
+#[inline(always)]
+fn span(t: &Triangle, y: i32) -> Option<(i32, i32)> {
+    let y_s = i64::from(y) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+    let (mut left, mut right) = (i64::from(t.x0), i64::from(t.x1));
+    for i in 0..3 {
+        let a = i64::from(t.a[i]);
+        let r = i64::from(t.b[i]) * y_s + t.c[i];
+        let inside = |x: i64| a * (x * SUBPIXEL_ONE + SUBPIXEL_HALF) + r >= 0;
+        if a == 0 {
+            if r < 0 {
+                return None;
+            }
+            continue;
+        }
+        // Boundary column: a·(256·X + 128) + r = 0.
+        let estimate = (-(r + a * SUBPIXEL_HALF) as f64) / ((a * SUBPIXEL_ONE) as f64);
+        if a > 0 {
+            // Inside from the first X with the test true.
+            let mut x = (estimate.ceil() as i64).clamp(left - 1, right + 1);
+            if !inside(x) {
+                x += 1;
+            } else if inside(x - 1) {
+                x -= 1;
+            }
+            left = left.max(x);
+        } else {
+            // Inside up to the last X with the test true.
+            let mut x = (estimate.floor() as i64).clamp(left - 1, right + 1);
+            if !inside(x) {
+                x -= 1;
+            } else if inside(x + 1) {
+                x += 1;
+            }
+            right = right.min(x + 1);
+        }
+        if left >= right {
+            return None;
+        }
+    }
+    Some((left as i32, right as i32))
 }
 
 /// Rows `y0..y1` of the image: the band with index `band`.

@@ -1,6 +1,20 @@
 //! The fast rasterizer: per-vertex work once, triangle setup in parallel
-//! chunks with per-chunk binning into bands of rows, then bands rasterized
-//! in parallel with SIMD blocks of 8 pixels.
+//! chunks with per-chunk binning into bands of 16 rows, then bands
+//! rasterized in parallel with SIMD blocks of 8 pixels.
+//!
+//! The pipeline of a frame:
+//!
+//! 1. **Vertices** (parallel): each position transformed and snapped once;
+//!    Gouraud lights each distinct (position, normal) 8 at a time.
+//! 2. **Setup** (parallel, in chunks of consecutive polygons): a triangle
+//!    whose corners are all inside the view volume goes straight from the
+//!    projected positions: facing from the snapped area, culling before any
+//!    attribute is read, the bounding box's pixel centres (none: done), edge
+//!    functions and attribute planes. Anything else (clipped, back faces drawn,
+//!    polygons) takes the general path. Each triangle is copied, with its
+//!    planes, into the bin of every band it touches.
+//! 3. **Bands** (parallel): a band reads its chunks' bins in order (see
+//!    `band.rs`), then writes its rows of the image.
 //!
 //! What must hold, and why it is built this way:
 //!
@@ -14,27 +28,31 @@
 //! * **Per-vertex work once per vertex.** Positions are transformed and
 //!   snapped once each; a polygon whose vertices are all inside the view
 //!   volume and guard band (nearly all of them) skips clipping, because
-//!   clipping would return it unchanged. Gouraud lights each distinct
-//!   (position, normal) pair once.
-//! * **Order is kept.** Chunks of consecutive polygons are set up in
-//!   parallel, each binning into its own per-band lists; a band walks the
-//!   chunks in order, so triangles meet the depth test in submission order,
-//!   as with one thread, and the image does not depend on the thread count.
+//!   clipping would return it unchanged.
+//! * **Order is kept.** Chunks are set up in parallel, each binning into its
+//!   own per-band lists; a band walks the chunks in order, so triangles meet
+//!   the depth test in submission order, as with one thread, and the image
+//!   does not depend on the thread count.
+//! * **Memory is read in streams.** Bins hold copies of their triangles, so
+//!   a band reads one contiguous run instead of chasing indices; each thread
+//!   draws its bands one after another in the same depth and colour
+//!   buffers, which stay in its cache.
 //! * **No allocation per frame in steady state.** All buffers live in
 //!   [`TiledRasterizer`] and are cleared, not dropped, between frames.
 
 mod band;
 mod setup;
+mod shade;
 
 use std::collections::HashMap;
+use std::sync::{Mutex, MutexGuard};
 
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
-use self::band::{
-    band_rows, Band, FlatShader, GouraudShader, Pass, PhongShader, Shader, MAX_ATTRS,
-};
-use self::setup::{Plane, Triangle, BAND_ROWS};
+use self::band::{band_rows, Band, Pass};
+use self::setup::{plane_count, Plane, Triangle, BAND_ROWS};
+use self::shade::{FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS};
 use crate::clip::{clip_polygon, is_inside, ClipVertex};
 use crate::color::Rgb8;
 use crate::image::Image;
@@ -58,7 +76,11 @@ pub(crate) struct TiledRasterizer {
     lit: Vec<[f32; 3]>,
     lit_back: Vec<[f32; 3]>,
     chunks: Vec<Chunk>,
-    bands: Vec<Band>,
+    /// The frame's lighting, prepared for lanes.
+    phong: PhongShader,
+    /// One band's working buffers per thread: each thread draws its bands
+    /// one after the other in the same buffers, which stay in its cache.
+    bands: Vec<Mutex<Band>>,
 }
 
 /// A vertex's window position, when it is inside the view volume and guard
@@ -80,13 +102,19 @@ impl Projected {
     }
 }
 
+/// The triangles of one chunk that touch one band, in submission order,
+/// copied here so that the band reads them as one contiguous stream.
+#[derive(Debug, Default)]
+struct Bin {
+    triangles: Vec<Triangle>,
+    /// `plane_count` planes per triangle.
+    planes: Vec<Plane>,
+}
+
 /// Consecutive polygons set up by one task, with their per-band bins.
 #[derive(Debug, Default)]
 struct Chunk {
-    triangles: Vec<Triangle>,
-    planes: Vec<Plane>,
-    /// Per band, indices into `triangles`, in submission order.
-    bins: Vec<Vec<u32>>,
+    bins: Vec<Bin>,
     stats: RenderStats,
     input: Vec<ClipVertex<MAX_ATTRS>>,
     clipped: Vec<ClipVertex<MAX_ATTRS>>,
@@ -219,6 +247,23 @@ impl Frame<'_> {
         }
     }
 
+    /// [`Frame::corner_attrs`] of a front face, for the method with `A`
+    /// attributes.
+    #[inline(always)]
+    fn front_attrs<const A: usize>(&self, corner: usize) -> [f32; A] {
+        let mut out = [0.0; A];
+        if A == 3 {
+            let c = self.lit[self.corner_vertex[corner] as usize];
+            out[..3].copy_from_slice(&c);
+        } else if A == 6 {
+            let normals = &self.scene.normals;
+            let n = normals.normals[normals.corner[corner] as usize];
+            let p = self.scene.mesh.positions()[self.scene.mesh.corners()[corner] as usize];
+            out.copy_from_slice(&[n.x, n.y, n.z, p.x, p.y, p.z]);
+        }
+        out
+    }
+
     fn attr_count(&self) -> usize {
         match self.options.shading {
             Shading::Flat => 0,
@@ -269,102 +314,193 @@ impl Chunk {
             .extend(self.clipped.iter().map(|v| to_window(v, width, height)));
     }
 
-    /// Sets up polygons `faces` and bins their triangles.
-    fn setup(&mut self, frame: &Frame<'_>, faces: std::ops::Range<usize>) {
-        self.triangles.clear();
-        self.planes.clear();
-        self.bins.resize_with(frame.bands, Vec::new);
+    /// Sets up polygons `faces` and bins their triangles, with the method's
+    /// `A` attributes, compiled for the SIMD level (for the compiler's own
+    /// vectorization: the arithmetic is the same, so are the results).
+    #[inline(always)]
+    fn setup<const A: usize>(&mut self, frame: &Frame<'_>, faces: std::ops::Range<usize>) {
+        self.bins.resize_with(frame.bands, Bin::default);
         self.bins.truncate(frame.bands);
-        self.bins.iter_mut().for_each(Vec::clear);
+        for bin in &mut self.bins {
+            bin.triangles.clear();
+            bin.planes.clear();
+        }
         self.stats = RenderStats::default();
-        let options = frame.options;
-        let mesh = &frame.scene.mesh;
-        let attrs = frame.attr_count();
         self.flat_surfaces.clear();
+        let mesh = &frame.scene.mesh;
         for face in faces {
             let Some(normal) = frame.faces[face] else {
                 self.stats.degenerate += 1;
                 continue;
             };
-            // Facing first, from the projected positions when no clipping is
-            // needed, so that culled polygons cost no attribute work.
-            let corners = &mesh.corners()[mesh.corner_range(face)];
-            let unclipped = corners
-                .iter()
-                .all(|&p| frame.projected[p as usize].inside());
-            let area = if unclipped {
-                window_area(frame.projected, corners)
-            } else {
-                self.project(frame, face, false);
-                if self.window.len() < 3 {
-                    0
-                } else {
-                    signed_area_ccw(&self.window)
+            let range = mesh.corner_range(face);
+            let corners = &mesh.corners()[range.clone()];
+            if let &[i0, i1, i2] = corners {
+                let p = [i0, i1, i2].map(|i| frame.projected[i as usize]);
+                if p.iter().all(Projected::inside) {
+                    // `None`: a back face drawn with culling off, left to the general path.
+                    if self
+                        .setup_triangle::<A>(frame, range.start, &p, normal)
+                        .is_some()
+                    {
+                        continue;
+                    }
                 }
-            };
-            if area == 0 {
-                self.stats.invisible += 1;
-                continue;
             }
-            let back = area < 0;
-            if back && options.cull_backfaces {
-                self.stats.culled += 1;
-                continue;
-            }
-            if back || unclipped {
-                self.project(frame, face, back);
-            }
-            if back {
-                self.window.reverse();
-            }
-            self.stats.rasterized += 1;
-            let color = if options.shading == Shading::Flat {
-                let polygon = mesh.polygon(face);
-                let centroid = polygon
-                    .iter()
-                    .map(|&i| mesh.positions()[i as usize])
-                    .sum::<Vec3>()
-                    / polygon.len() as f32;
-                let n = if back { -normal } else { normal };
-                let p = centroid;
-                self.flat_surfaces.push([n.x, n.y, n.z, p.x, p.y, p.z]);
-                (self.flat_surfaces.len() - 1) as u32
-            } else {
-                0
-            };
-            let fan = fan(&self.window);
-            let once = if fan.once_per_pixel {
-                face as u32 + 1
-            } else {
-                0
-            };
-            for triangle in fan.triangles(&self.window) {
-                if signed_area_ccw(&triangle) <= 0 {
-                    continue;
-                }
-                let Some(mut t) = Triangle::new(
-                    &triangle,
-                    attrs,
-                    options.width,
-                    options.height,
-                    options.interpolation,
-                    &mut self.planes,
-                ) else {
-                    continue;
-                };
-                t.color = color;
-                t.flip = if back { -1.0 } else { 1.0 };
-                t.once = once;
-                let index = self.triangles.len() as u32;
-                for band in t.bands() {
-                    self.bins[band].push(index);
-                }
-                self.triangles.push(t);
-            }
+            self.setup_polygon(frame, face, normal);
         }
-        if options.shading == Shading::Flat {
+        if frame.options.shading == Shading::Flat {
             self.light_flat_polygons(frame);
         }
+    }
+
+    /// The common case: a triangle whose corners are all inside the view
+    /// volume, set up straight from the projected positions. `None` when it
+    /// is a back face to be drawn (culling off), left to `setup_polygon`.
+    #[inline(always)]
+    fn setup_triangle<const A: usize>(
+        &mut self,
+        frame: &Frame<'_>,
+        first_corner: usize,
+        p: &[Projected; 3],
+        normal: Vec3,
+    ) -> Option<()> {
+        let options = frame.options;
+        let x = p.map(|p| i64::from(p.x));
+        let y = p.map(|p| i64::from(p.y));
+        // As `signed_area_ccw`; snapped coordinates within ±2^29 keep it in i64.
+        let area = (x[2] - x[0]) * (y[1] - y[0]) - (x[1] - x[0]) * (y[2] - y[0]);
+        if area == 0 {
+            self.stats.invisible += 1;
+            return Some(());
+        }
+        if area < 0 {
+            if options.cull_backfaces {
+                self.stats.culled += 1;
+                return Some(());
+            }
+            return None;
+        }
+        self.stats.rasterized += 1;
+        let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
+            return Some(());
+        };
+        let vertex = |k: usize| ScreenVertex {
+            x: x[k],
+            y: y[k],
+            depth: p[k].depth,
+            inv_w: p[k].inv_w,
+            attrs: frame.front_attrs::<A>(first_corner + k),
+        };
+        let v: [ScreenVertex<A>; 3] = [vertex(0), vertex(1), vertex(2)];
+        let planes = t.planes(&v, A, options.interpolation);
+        if A == 0 {
+            // As `flat_surface`, with the triangle's corners at hand.
+            let positions = frame.scene.mesh.positions();
+            let corners = &frame.scene.mesh.corners()[first_corner..first_corner + 3];
+            let c = (Vec3::ZERO
+                + positions[corners[0] as usize]
+                + positions[corners[1] as usize]
+                + positions[corners[2] as usize])
+                / 3.0;
+            self.flat_surfaces
+                .push([normal.x, normal.y, normal.z, c.x, c.y, c.z]);
+            t.color = (self.flat_surfaces.len() - 1) as u32;
+        }
+        self.bin(&t, &planes[..plane_count(A)]);
+        Some(())
+    }
+
+    /// Queues a polygon for flat lighting; returns its index.
+    fn flat_surface(&mut self, frame: &Frame<'_>, face: usize, normal: Vec3, back: bool) -> u32 {
+        let mesh = &frame.scene.mesh;
+        let polygon = mesh.polygon(face);
+        let centroid = polygon
+            .iter()
+            .map(|&i| mesh.positions()[i as usize])
+            .sum::<Vec3>()
+            / polygon.len() as f32;
+        let n = if back { -normal } else { normal };
+        let p = centroid;
+        self.flat_surfaces.push([n.x, n.y, n.z, p.x, p.y, p.z]);
+        (self.flat_surfaces.len() - 1) as u32
+    }
+
+    /// Adds a set-up triangle to the bins of the bands it touches.
+    #[inline(always)]
+    fn bin(&mut self, t: &Triangle, planes: &[Plane]) {
+        for band in t.bands() {
+            let bin = &mut self.bins[band];
+            bin.triangles.push(*t);
+            bin.planes.extend_from_slice(planes);
+        }
+    }
+
+    /// Any polygon: clipped if needed, faced, split into the fan both
+    /// rasterizers use.
+    fn setup_polygon(&mut self, frame: &Frame<'_>, face: usize, normal: Vec3) {
+        let options = frame.options;
+        let mesh = &frame.scene.mesh;
+        let attrs = frame.attr_count();
+        // Facing first, from the projected positions when no clipping is
+        // needed, so that culled polygons cost no attribute work.
+        let corners = &mesh.corners()[mesh.corner_range(face)];
+        let unclipped = corners
+            .iter()
+            .all(|&p| frame.projected[p as usize].inside());
+        let area = if unclipped {
+            window_area(frame.projected, corners)
+        } else {
+            self.project(frame, face, false);
+            if self.window.len() < 3 {
+                0
+            } else {
+                signed_area_ccw(&self.window)
+            }
+        };
+        if area == 0 {
+            self.stats.invisible += 1;
+            return;
+        }
+        let back = area < 0;
+        if back && options.cull_backfaces {
+            self.stats.culled += 1;
+            return;
+        }
+        if back || unclipped {
+            self.project(frame, face, back);
+        }
+        if back {
+            self.window.reverse();
+        }
+        self.stats.rasterized += 1;
+        let color = if options.shading == Shading::Flat {
+            self.flat_surface(frame, face, normal, back)
+        } else {
+            0
+        };
+        let fan = fan(&self.window);
+        let once = if fan.once_per_pixel {
+            face as u32 + 1
+        } else {
+            0
+        };
+        let window = std::mem::take(&mut self.window);
+        for triangle in fan.triangles(&window) {
+            if signed_area_ccw(&triangle) <= 0 {
+                continue;
+            }
+            let (x, y) = (triangle.map(|v| v.x), triangle.map(|v| v.y));
+            let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
+                continue;
+            };
+            let planes = t.planes(&triangle, attrs, options.interpolation);
+            t.color = color;
+            t.flip = if back { -1.0 } else { 1.0 };
+            t.once = once;
+            self.bin(&t, &planes[..plane_count(attrs)]);
+        }
+        self.window = window;
     }
 
     /// Lights the front polygons of flat shading, 8 at a time, and gives
@@ -380,8 +516,78 @@ impl Chunk {
             shader: frame.phong,
         };
         dispatch(frame.simd, kernel);
-        for t in &mut self.triangles {
-            t.color = self.flat_colors[t.color as usize] as u32;
+        for bin in &mut self.bins {
+            for t in &mut bin.triangles {
+                t.color = self.flat_colors[t.color as usize] as u32;
+            }
+        }
+    }
+}
+
+/// Gouraud's vertex colours, 8 vertices per SIMD evaluation, clamped to
+/// [0, 1] as `Lighting::eval(..).clamped()`.
+struct VertexKernel<'a> {
+    first: usize,
+    colors: &'a mut [[f32; 3]],
+    table: &'a VertexTable,
+    positions: &'a [Vec3],
+    normals: &'a [Vec3],
+    sign: f32,
+    shader: &'a PhongShader,
+    specular: bool,
+}
+
+impl Kernel for VertexKernel<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) {
+        let t = self.table;
+        for (j, colors) in self.colors.chunks_mut(8).enumerate() {
+            let base = self.first + 8 * j;
+            let mut lanes = [[0f32; 8]; 6];
+            for (i, v) in (base..base + colors.len()).enumerate() {
+                let p = t.position[v];
+                if p == u32::MAX {
+                    continue;
+                }
+                let n = self.normals[t.normal[v] as usize] * self.sign;
+                let q = self.positions[p as usize];
+                for (k, value) in [n.x, n.y, n.z, q.x, q.y, q.z].into_iter().enumerate() {
+                    lanes[k][i] = value;
+                }
+            }
+            let attrs: [Vf<S>; MAX_ATTRS] = std::array::from_fn(|k| Vf::load(s, &lanes[k]));
+            let rgb = self.shader.radiance(s, &attrs, self.specular);
+            let mut out = [[0f32; 8]; 3];
+            for k in 0..3 {
+                let c = rgb[k].max(Vf::splat(s, 0.0)).min(Vf::splat(s, 1.0));
+                c.store(&mut out[k]);
+            }
+            for (i, color) in colors.iter_mut().enumerate() {
+                *color = [out[0][i], out[1][i], out[2][i]];
+            }
+        }
+    }
+}
+
+/// One chunk's setup, compiled per SIMD level.
+struct SetupKernel<'a, 'f> {
+    chunk: &'a mut Chunk,
+    frame: &'a Frame<'f>,
+    faces: std::ops::Range<usize>,
+}
+
+impl Kernel for SetupKernel<'_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<S: Simd>(self, _: S) {
+        let (chunk, frame, faces) = (self.chunk, self.frame, self.faces);
+        match frame.options.shading {
+            Shading::Flat => chunk.setup::<0>(frame, faces),
+            Shading::Gouraud => chunk.setup::<3>(frame, faces),
+            Shading::Phong => chunk.setup::<6>(frame, faces),
         }
     }
 }
@@ -455,23 +661,25 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             Output::Counts(_) => Pass::Count,
         };
         self.band.begin(o.width, y1 - y0, pass);
-        let stride = 2 + S::ATTRS;
+        let stride = plane_count(S::ATTRS);
+        let lanes = self.shader.lanes(simd);
         for chunk in self.chunks {
-            for &t in &chunk.bins[self.index] {
-                let t = t as usize;
+            let bin = &chunk.bins[self.index];
+            for (t, planes) in bin.triangles.iter().zip(bin.planes.chunks_exact(stride)) {
                 self.band.draw(
                     simd,
-                    &chunk.triangles[t],
-                    &chunk.planes[t * stride..(t + 1) * stride],
+                    t,
+                    planes,
                     self.shader,
+                    &lanes,
                     o.interpolation,
                     y0,
                     y1,
-                    o.width,
                     pass,
                 );
             }
         }
+        self.band.flush(simd, self.shader, &lanes);
         match self.output {
             Output::Image(pixels, background) => {
                 self.band.finish(simd, pixels, o.width, background)
@@ -479,6 +687,15 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             Output::Counts(counts) => self.band.finish_counts(counts, o.width),
         }
     }
+}
+
+/// The calling thread's band buffers (uncontended: one per pool thread;
+/// a caller outside the pool uses the first).
+fn scratch_band(scratch: &[Mutex<Band>]) -> MutexGuard<'_, Band> {
+    let slot = rayon::current_thread_index().unwrap_or(0) % scratch.len();
+    scratch[slot]
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
 /// Runs one band of a pass with the shader `S`, compiled for the SIMD level.
@@ -517,6 +734,7 @@ impl TiledRasterizer {
             lit: Vec::new(),
             lit_back: Vec::new(),
             chunks: Vec::new(),
+            phong: PhongShader::default(),
             bands: Vec::new(),
         }
     }
@@ -538,26 +756,31 @@ impl TiledRasterizer {
         let (chunks, simd) = (&self.chunks, self.simd);
         let Rgb8([r, g, b]) = options.background;
         let background = i32::from(r) | i32::from(g) << 8 | i32::from(b) << 16;
-        let phong = PhongShader::new(lighting);
+        let phong = &self.phong;
+        let scratch = &self.bands;
         let bands = image
             .pixels_mut()
             .par_chunks_mut(width * BAND_ROWS as usize)
-            .zip(self.bands.par_iter_mut())
             .enumerate();
-        bands.for_each(|(index, (pixels, band))| {
+        let totals = bands.map(|(index, pixels)| {
+            let mut guard = scratch_band(scratch);
+            let band = &mut *guard;
             let output = Output::Image(pixels, background);
             match options.shading {
                 Shading::Flat => band_pass(simd, band, index, chunks, &FlatShader, options, output),
                 Shading::Gouraud => {
                     band_pass(simd, band, index, chunks, &GouraudShader, options, output)
                 }
-                Shading::Phong => band_pass(simd, band, index, chunks, &phong, options, output),
+                Shading::Phong => match &phong.one_point_light {
+                    Some(one) => band_pass(simd, band, index, chunks, one, options, output),
+                    None => band_pass(simd, band, index, chunks, phong, options, output),
+                },
             }
+            (band.fragments, band.covered)
         });
-        for band in &self.bands {
-            stats.fragments_shaded += band.fragments;
-            stats.covered_pixels += band.covered;
-        }
+        let (fragments, covered) = totals.reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+        stats.fragments_shaded += fragments;
+        stats.covered_pixels += covered;
         if options.shading == Shading::Phong {
             stats.lighting_evaluations = stats.fragments_shaded;
         }
@@ -579,13 +802,22 @@ impl TiledRasterizer {
         let width = options.width as usize;
         let mut counts = vec![0u32; width * options.height as usize];
         let (chunks, simd) = (&self.chunks, self.simd);
+        let scratch = &self.bands;
         counts
             .par_chunks_mut(width * BAND_ROWS as usize)
-            .zip(self.bands.par_iter_mut())
             .enumerate()
-            .for_each(|(index, (out, band))| {
+            .for_each(|(index, out)| {
+                let mut band = scratch_band(scratch);
                 let output = Output::Counts(out);
-                band_pass(simd, band, index, chunks, &FlatShader, &options, output);
+                band_pass(
+                    simd,
+                    &mut band,
+                    index,
+                    chunks,
+                    &FlatShader,
+                    &options,
+                    output,
+                );
             });
         counts
     }
@@ -602,6 +834,7 @@ impl TiledRasterizer {
         let view_projection = scene.camera.projection(aspect) * scene.camera.view();
         let guard = guard_band(width, height);
         let mesh = &scene.mesh;
+        self.phong.update(lighting);
 
         let positions = mesh.positions();
         self.projected.resize(positions.len(), Projected::default());
@@ -633,14 +866,14 @@ impl TiledRasterizer {
 
         let mut evaluations = 0;
         if options.shading == Shading::Gouraud {
-            evaluations = self.light_vertices(scene, options, lighting);
+            evaluations = self.light_vertices(scene, options);
         }
 
         self.faces.update(mesh);
-        let phong = PhongShader::new(lighting);
         let bands = height.div_ceil(BAND_ROWS) as usize;
-        self.bands.resize_with(bands, Band::default);
-        self.bands.truncate(bands);
+        let threads = rayon::current_num_threads().max(1);
+        self.bands.resize_with(threads, Mutex::default);
+        self.bands.truncate(threads);
         let chunk_count = (rayon::current_num_threads() * 2).max(1);
         self.chunks.resize_with(chunk_count, Chunk::default);
         self.chunks.truncate(chunk_count);
@@ -651,7 +884,7 @@ impl TiledRasterizer {
             clip: &self.clip,
             corner_vertex: &self.vertices.corner_vertex,
             faces: &self.faces.normals,
-            phong: &phong,
+            phong: &self.phong,
             simd: self.simd,
             lit: &self.lit,
             lit_back: &self.lit_back,
@@ -665,7 +898,14 @@ impl TiledRasterizer {
             .for_each(|(i, chunk)| {
                 let start = polygons * i / chunk_count;
                 let end = polygons * (i + 1) / chunk_count;
-                chunk.setup(&frame, start..end);
+                dispatch(
+                    frame.simd,
+                    SetupKernel {
+                        chunk,
+                        frame: &frame,
+                        faces: start..end,
+                    },
+                );
             });
 
         let mut stats = RenderStats {
@@ -684,13 +924,9 @@ impl TiledRasterizer {
         stats
     }
 
-    /// Gouraud's per-vertex lighting; returns the number of evaluations.
-    fn light_vertices(
-        &mut self,
-        scene: &Scene,
-        options: &RenderOptions,
-        lighting: &Lighting,
-    ) -> u64 {
+    /// Gouraud's per-vertex lighting, with the frame's lighting already in
+    /// `self.phong`; returns the number of evaluations.
+    fn light_vertices(&mut self, scene: &Scene, options: &RenderOptions) -> u64 {
         let normals = &scene.normals;
         self.vertices
             .update(scene.mesh.corners(), &normals.corner, normals.normals.len());
@@ -701,22 +937,24 @@ impl TiledRasterizer {
         };
         let table = &self.vertices;
         let positions = scene.mesh.positions();
+        let shader = &self.phong;
+        let simd = self.simd;
         let light = |out: &mut Vec<[f32; 3]>, sign: f32| {
             out.resize(table.position.len(), [0.0; 3]);
             out.par_chunks_mut(1024)
                 .enumerate()
                 .for_each(|(k, colors)| {
-                    for (i, color) in colors.iter_mut().enumerate() {
-                        let v = k * 1024 + i;
-                        let p = table.position[v];
-                        if p != u32::MAX {
-                            let n = normals.normals[table.normal[v] as usize] * sign;
-                            *color = lighting
-                                .eval(positions[p as usize], n, terms)
-                                .clamped()
-                                .to_array();
-                        }
-                    }
+                    let kernel = VertexKernel {
+                        first: k * 1024,
+                        colors,
+                        table,
+                        positions,
+                        normals: &normals.normals,
+                        sign,
+                        shader,
+                        specular: terms == Terms::Full,
+                    };
+                    dispatch(simd, kernel);
                 });
         };
         light(&mut self.lit, 1.0);

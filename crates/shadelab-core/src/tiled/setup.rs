@@ -19,6 +19,9 @@
 
 use crate::raster::{Interpolation, ScreenVertex, SUBPIXEL_HALF, SUBPIXEL_ONE};
 
+/// The most planes a triangle has: depth, 1/w and six attributes.
+pub(crate) const PLANES: usize = 8;
+
 /// Image rows per band: the unit of binning and of parallel work.
 pub(crate) const BAND_ROWS: u32 = 16;
 
@@ -31,19 +34,32 @@ pub(crate) struct Plane {
     pub dy: f32,
 }
 
+/// How a triangle's rows are walked (see `band.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Walk {
+    /// Every edge function stays within ±2^31 over the triangle's block-aligned
+    /// bounding box: blocks of 8 lanes of `i32`, one add per block and edge.
+    Blocks,
+    /// Larger triangles: each row's covered span is found exactly per edge
+    /// (an `f64` quotient corrected by exact integer tests), then filled.
+    Spans,
+}
+
 /// A triangle ready to rasterize. Its planes live in a separate array:
-/// depth, 1/w, then the shading method's attributes.
+/// depth, then (Gouraud and Phong) 1/w and the shading method's attributes.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Triangle {
     /// Edge functions `a·x + b·y + c` over snapped pixel centres, inside ≥ 0.
-    pub a: [i64; 3],
-    pub b: [i64; 3],
+    /// `a` and `b` are differences of snapped coordinates (within ±2^30).
+    pub a: [i32; 3],
+    pub b: [i32; 3],
     pub c: [i64; 3],
     /// Covered pixels lie in columns `x0..x1` and rows `y0..y1` (clipped to the image).
     pub x0: i32,
     pub y0: i32,
     pub x1: i32,
     pub y1: i32,
+    pub walk: Walk,
     /// Flat shading's colour, packed as `r | g << 8 | b << 16`.
     pub color: u32,
     /// −1 for a back face drawn with culling off (Phong turns its normals), else 1.
@@ -53,73 +69,53 @@ pub(crate) struct Triangle {
     pub once: u32,
 }
 
+/// The pixel range `first..last + 1` whose centres lie within `min..=max`
+/// (snapped units), clipped to `0..size`.
+#[inline(always)]
+fn centres(min: i64, max: i64, size: u32) -> (i64, i64) {
+    let first = (min - SUBPIXEL_HALF + SUBPIXEL_ONE - 1).div_euclid(SUBPIXEL_ONE);
+    let last = (max - SUBPIXEL_HALF).div_euclid(SUBPIXEL_ONE);
+    (first.max(0), (last + 1).min(i64::from(size)))
+}
+
 impl Triangle {
-    /// Sets up a counter-clockwise triangle of positive area, or `None`
-    /// when no pixel centre of the image can be inside it. Its depth, 1/w
-    /// and attribute planes are appended to `planes`.
-    pub fn new<const N: usize>(
-        v: &[ScreenVertex<N>; 3],
-        attrs: usize,
-        width: u32,
-        height: u32,
-        interpolation: Interpolation,
-        planes: &mut Vec<Plane>,
-    ) -> Option<Triangle> {
-        let min_x = v[0].x.min(v[1].x).min(v[2].x);
-        let max_x = v[0].x.max(v[1].x).max(v[2].x);
-        let min_y = v[0].y.min(v[1].y).min(v[2].y);
-        let max_y = v[0].y.max(v[1].y).max(v[2].y);
-        // Pixels whose centres lie within the bounding box.
-        let first = |min: i64| (min - SUBPIXEL_HALF + SUBPIXEL_ONE - 1).div_euclid(SUBPIXEL_ONE);
-        let last = |max: i64| (max - SUBPIXEL_HALF).div_euclid(SUBPIXEL_ONE);
-        let x0 = first(min_x).max(0);
-        let y0 = first(min_y).max(0);
-        let x1 = (last(max_x) + 1).min(i64::from(width));
-        let y1 = (last(max_y) + 1).min(i64::from(height));
-        if x0 >= x1 || y0 >= y1 {
+    /// The edges and pixel bounds of a counter-clockwise triangle of
+    /// positive area with snapped vertices `x`, `y`, or `None` when no pixel
+    /// centre of the image lies within its bounding box.
+    #[inline(always)]
+    pub fn edges(x: [i64; 3], y: [i64; 3], width: u32, height: u32) -> Option<Triangle> {
+        let (y0, y1) = centres(y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]), height);
+        if y0 >= y1 {
             return None;
         }
-
-        let (mut a, mut b, mut c) = ([0i64; 3], [0i64; 3], [0i64; 3]);
+        let (x0, x1) = centres(x[0].min(x[1]).min(x[2]), x[0].max(x[1]).max(x[2]), width);
+        if x0 >= x1 {
+            return None;
+        }
+        let (mut a, mut b, mut c) = ([0i32; 3], [0i32; 3], [0i64; 3]);
         for i in 0..3 {
-            let (p, q) = (&v[i], &v[(i + 1) % 3]);
-            a[i] = q.y - p.y;
-            b[i] = p.x - q.x;
-            c[i] = -(a[i] * p.x + b[i] * p.y);
-            let top_left = a[i] > 0 || (a[i] == 0 && b[i] > 0);
-            if !top_left {
-                c[i] -= 1;
-            }
+            let j = (i + 1) % 3;
+            let (ai, bi) = (y[j] - y[i], x[i] - x[j]);
+            let top_left = ai > 0 || (ai == 0 && bi > 0);
+            c[i] = -(ai * x[i] + bi * y[i]) - i64::from(!top_left);
+            a[i] = ai as i32;
+            b[i] = bi as i32;
         }
-
-        let pixel = |u: i64| u as f64 / SUBPIXEL_ONE as f64;
-        let (px, py) = (v.map(|v| pixel(v.x)), v.map(|v| pixel(v.y)));
-        let (e1x, e1y) = (px[1] - px[0], py[1] - py[0]);
-        let (e2x, e2y) = (px[2] - px[0], py[2] - py[0]);
-        let inv_det = 1.0 / (e1x * e2y - e2x * e1y);
-        // Pixel centre of the first pixel, relative to vertex 0.
-        let (ox, oy) = (x0 as f64 + 0.5 - px[0], y0 as f64 + 0.5 - py[0]);
-        let mut plane = |q: [f64; 3]| {
-            let (d1, d2) = (q[1] - q[0], q[2] - q[0]);
-            let dx = (d1 * e2y - d2 * e1y) * inv_det;
-            let dy = (d2 * e1x - d1 * e2x) * inv_det;
-            planes.push(Plane {
-                at_origin: (q[0] + dx * ox + dy * oy) as f32,
-                dx: dx as f32,
-                dy: dy as f32,
-            });
-        };
-        plane(v.map(|v| f64::from(v.depth)));
-        plane(v.map(|v| f64::from(v.inv_w)));
-        for k in 0..attrs.min(N) {
-            plane(v.map(|v| {
-                let scale = match interpolation {
-                    Interpolation::Perspective => f64::from(v.inv_w),
-                    Interpolation::Screen => 1.0,
-                };
-                f64::from(v.attrs[k]) * scale
-            }));
-        }
+        // The edge functions' extremes over the block-aligned box are at its corners.
+        let bx0 = (x0 & !7) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let bx1 = (((x1 + 7) & !7) - 1) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let (by0, by1) = (
+            y0 * SUBPIXEL_ONE + SUBPIXEL_HALF,
+            (y1 - 1) * SUBPIXEL_ONE + SUBPIXEL_HALF,
+        );
+        let fits = (0..3).all(|i| {
+            let (a, b) = (i64::from(a[i]), i64::from(b[i]));
+            let e = a * bx0 + b * by0 + c[i];
+            // One more block and one more row are stepped past the box.
+            let reach = a.abs() * (bx1 - bx0 + 16 * SUBPIXEL_ONE)
+                + b.abs() * (by1 - by0 + 2 * SUBPIXEL_ONE);
+            e.abs() + reach < i64::from(i32::MAX)
+        });
         Some(Triangle {
             a,
             b,
@@ -128,15 +124,86 @@ impl Triangle {
             y0: y0 as i32,
             x1: x1 as i32,
             y1: y1 as i32,
+            walk: if fits { Walk::Blocks } else { Walk::Spans },
             color: 0,
             flip: 1.0,
             once: 0,
         })
     }
 
+    /// The planes of depth and, when `attrs > 0`, of 1/w and the first
+    /// `attrs` attributes (divided by w in perspective mode): the first
+    /// [`plane_count`]`(attrs)` entries.
+    #[inline(always)]
+    pub fn planes<const N: usize>(
+        &self,
+        v: &[ScreenVertex<N>; 3],
+        attrs: usize,
+        interpolation: Interpolation,
+    ) -> [Plane; PLANES] {
+        // The values at the three corners, one array per corner so that
+        // the per-plane arithmetic below is a straight loop over planes.
+        let mut q = [[0f64; PLANES]; 3];
+        for i in 0..3 {
+            let inv_w = f64::from(v[i].inv_w);
+            let scale = match interpolation {
+                Interpolation::Perspective => inv_w,
+                Interpolation::Screen => 1.0,
+            };
+            q[i][0] = f64::from(v[i].depth);
+            q[i][1] = inv_w;
+            for k in 0..N.min(PLANES - 2) {
+                q[i][2 + k] = f64::from(v[i].attrs[k]) * scale;
+            }
+        }
+        let unit = 1.0 / SUBPIXEL_ONE as f64;
+        let (px0, py0) = (v[0].x as f64 * unit, v[0].y as f64 * unit);
+        let (e1x, e1y) = (
+            (v[1].x - v[0].x) as f64 * unit,
+            (v[1].y - v[0].y) as f64 * unit,
+        );
+        let (e2x, e2y) = (
+            (v[2].x - v[0].x) as f64 * unit,
+            (v[2].y - v[0].y) as f64 * unit,
+        );
+        let inv_det = 1.0 / (e1x * e2y - e2x * e1y);
+        // Pixel centre of the first pixel, relative to vertex 0.
+        let (ox, oy) = (
+            f64::from(self.x0) + 0.5 - px0,
+            f64::from(self.y0) + 0.5 - py0,
+        );
+        let (gx1, gx2) = (e2y * inv_det, -e1y * inv_det);
+        let (gy1, gy2) = (-e2x * inv_det, e1x * inv_det);
+        let mut planes = [Plane::default(); PLANES];
+        let count = plane_count(attrs);
+        for k in 0..PLANES {
+            if k == count {
+                break;
+            }
+            let (d1, d2) = (q[1][k] - q[0][k], q[2][k] - q[0][k]);
+            let dx = d1 * gx1 + d2 * gx2;
+            let dy = d1 * gy1 + d2 * gy2;
+            planes[k] = Plane {
+                at_origin: (q[0][k] + dx * ox + dy * oy) as f32,
+                dx: dx as f32,
+                dy: dy as f32,
+            };
+        }
+        planes
+    }
+
     /// The bands this triangle's rows fall in.
     pub fn bands(&self) -> std::ops::Range<usize> {
         self.y0 as usize / BAND_ROWS as usize..(self.y1 as usize - 1) / BAND_ROWS as usize + 1
+    }
+}
+
+/// Planes per triangle for a method interpolating `attrs` attributes.
+pub(crate) const fn plane_count(attrs: usize) -> usize {
+    if attrs == 0 {
+        1
+    } else {
+        2 + attrs
     }
 }
 
@@ -157,9 +224,9 @@ mod tests {
     #[test]
     fn planes_reproduce_vertex_values() {
         let tri = [v(300, 200), v(900, 2000), v(2500, 700)];
-        let mut planes = Vec::new();
-        let t = Triangle::new(&tri, 1, 64, 64, Interpolation::Screen, &mut planes).unwrap();
-        assert_eq!(planes.len(), 3);
+        let t = Triangle::edges(tri.map(|v| v.x), tri.map(|v| v.y), 64, 64).unwrap();
+        let planes = t.planes(&tri, 1, Interpolation::Screen);
+        assert_eq!(plane_count(1), 3);
         // attr = x + 2y in snapped units = 256·(X + 2Y) in pixels.
         let p = planes[2];
         assert!((p.dx - 256.0).abs() < 1e-3 && (p.dy - 512.0).abs() < 1e-3);
@@ -170,9 +237,13 @@ mod tests {
     #[test]
     fn bounding_box_takes_pixel_centres() {
         let tri = [v(128, 128), v(128, 1152), v(1152, 128)];
-        let t = Triangle::new(&tri, 1, 64, 64, Interpolation::Screen, &mut Vec::new()).unwrap();
+        let t = Triangle::edges(tri.map(|v| v.x), tri.map(|v| v.y), 64, 64).unwrap();
         assert_eq!((t.x0, t.y0, t.x1, t.y1), (0, 0, 5, 5));
+        assert_eq!(t.walk, Walk::Blocks);
         let off = [v(-900, 10), v(-900, 900), v(-200, 10)];
-        assert!(Triangle::new(&off, 1, 64, 64, Interpolation::Screen, &mut Vec::new()).is_none());
+        assert!(Triangle::edges(off.map(|v| v.x), off.map(|v| v.y), 64, 64).is_none());
+        let huge = [v(0, 0), v(0, 1 << 20), v(1 << 20, 0)];
+        let t = Triangle::edges(huge.map(|v| v.x), huge.map(|v| v.y), 4096, 4096).unwrap();
+        assert_eq!(t.walk, Walk::Spans);
     }
 }

@@ -1,0 +1,64 @@
+//! The tiled rasterizer allocates nothing per frame once warmed up: every
+//! buffer lives in the `Renderer` and is cleared, not dropped. Counted with
+//! dhat's heap profiler in testing mode, over frames of each method on a
+//! one-thread pool (the pool and the renderer are made before counting).
+
+use glam::Vec3;
+use shadelab_core::{
+    builtin_model, vertex_normals, Camera, Image, Light, LightKind, Material, NormalWeighting,
+    RenderOptions, Renderer, Rgb, Rgb8, Scene, Shading,
+};
+
+#[global_allocator]
+static ALLOCATOR: dhat::Alloc = dhat::Alloc;
+
+#[test]
+fn frames_after_the_first_allocate_nothing() {
+    let _profiler = dhat::Profiler::builder().testing().build();
+    let mesh = builtin_model("teapot", None).unwrap().normalized();
+    let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
+    let scene = Scene {
+        mesh,
+        normals,
+        camera: Camera::framing_sphere(Vec3::ZERO, 1.0, 45.0, 4.0 / 3.0),
+        ambient: Rgb::new(0.2, 0.2, 0.2),
+        lights: vec![Light {
+            kind: LightKind::Point {
+                position: Vec3::new(2.0, 2.0, 3.0),
+            },
+            color: Rgb::WHITE,
+            intensity: 1.0,
+        }],
+        material: Material::default(),
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let mut renderer = Renderer::new();
+    let mut image = Image::filled(320, 240, Rgb8::new(0, 0, 0));
+    let (before, after) = pool.install(|| {
+        let mut frame = |shading: Shading| {
+            let options = RenderOptions {
+                width: 320,
+                height: 240,
+                shading,
+                ..RenderOptions::default()
+            };
+            renderer.render_into(&scene, &options, &mut image).unwrap();
+        };
+        for _ in 0..3 {
+            Shading::ALL.into_iter().for_each(&mut frame);
+        }
+        let before = dhat::HeapStats::get();
+        for _ in 0..5 {
+            Shading::ALL.into_iter().for_each(&mut frame);
+        }
+        (before, dhat::HeapStats::get())
+    });
+    dhat::assert_eq!(
+        after.total_blocks - before.total_blocks,
+        0,
+        "allocations during 15 warmed-up frames"
+    );
+}
