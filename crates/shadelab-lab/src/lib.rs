@@ -4,7 +4,7 @@
 //!
 //! | instrument | module | entry point |
 //! |---|---|---|
-//! | pixel inspector | `inspect` | [`inspect`], [`inspection_text`] |
+//! | pixel inspector | `inspect` | [`inspect`], [`inspection_text`] ([`inspection_header`], [`method_inspection_text`]) |
 //! | scanline profile (Mach bands) | `profile` | [`profile()`] |
 //! | exact surfaces | `exact` | [`Surface`], [`ExactImage`] |
 //! | error maps, accuracy | `errors` | [`error_maps`], [`accuracy`] |
@@ -41,15 +41,15 @@ mod texts;
 
 pub use cost::{measure_cost, Cost};
 pub use errors::{
-    accuracy, drawn_mask, error_maps, exact_image, heat_bar, heat_color, image_diff, AccuracyRow,
-    ErrorMap, ImageDiff, MethodErrors, SILHOUETTE,
+    accuracy, drawn_mask, error_maps, exact_image, heat_bar, heat_color, heat_scale, image_diff,
+    AccuracyRow, ErrorMap, ImageDiff, MethodErrors, SILHOUETTE,
 };
 pub use exact::{
     exact_pixel, normalization, ExactImage, Rays, Shape, Surface, SurfaceHit, EXACT_MODELS,
 };
 pub use inspect::{
-    inspect, inspection_text, lerp_attributes, CornerView, EdgeView, Inspection, MethodView,
-    SpanView, WalkedVertex,
+    inspect, inspection_header, inspection_text, lerp_attributes, method_inspection_text,
+    CornerView, EdgeView, Inspection, MethodView, SpanView, WalkedVertex,
 };
 pub use overlay::{
     draw_overlays, Canvas, Overlays, Projector, WindowPoint, FACE_NORMAL, LIGHT, NORMAL_LENGTH,
