@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 use shadelab_core::{Image, Rgb8, Shading};
 use shadelab_lab::{
-    draw_overlays, drawn_mask, exact_image, heat_scale, inspect, inspection_header,
+    draw_overlays, drawn_mask, exact_image, heat_bar, heat_scale, inspect, inspection_header,
     method_inspection_text, profile, quad_study, CurveKind, ErrorMap, ExactImage, Lang, Overlays,
     ProfileLine, Surface, Texts, EXACT_MODELS,
 };
@@ -134,6 +134,10 @@ pub struct ErrorsRequest {
     /// Overlays to draw over the heat map (see [`OverlaysRequest`]).
     #[serde(default)]
     pub overlays: String,
+    /// Also answer with the colour scale as a vertical bar `[width, height]`,
+    /// its top the scale's brightest colour ([`heat_bar`]).
+    #[serde(default)]
+    pub bar: Option<[u32; 2]>,
 }
 
 /// The error map of one frame.
@@ -153,7 +157,7 @@ pub struct ErrorsAnswer {
     pub surface_only: usize,
     /// The scale the heat image uses (its brightest colour), 0–255 units.
     pub scale: f32,
-    /// The images: `heat`, then `exact` when asked for.
+    /// The images: `heat`, then `exact` and `bar` when asked for.
     pub images: Vec<ImageInfo>,
 }
 
@@ -225,9 +229,21 @@ impl Engine {
         let exact_pixels = request
             .exact
             .then(|| exact_image(&kept.exact, kept.background));
+        let bar = match request.bar {
+            Some([w, h]) if (1..=64).contains(&w) && (1..=1024).contains(&h) => {
+                Some(heat_bar(w, h))
+            }
+            Some([w, h]) => {
+                return Err(bad(format!("a colour bar of {w}x{h} pixels is not drawn")))
+            }
+            None => None,
+        };
         let mut images = vec![("heat", &heat)];
         if let Some(e) = &exact_pixels {
             images.push(("exact", e));
+        }
+        if let Some(b) = &bar {
+            images.push(("bar", b));
         }
         let map = &self.errors.as_ref().expect("just kept").map;
         let answer = ErrorsAnswer {

@@ -8,8 +8,8 @@ use std::path::Path;
 use shadelab_core::{render, Image, RenderOptions, Scene, Shading};
 use shadelab_io::SceneFile;
 use shadelab_lab::{
-    draw_overlays, error_maps, exact_image, heat_scale, inspect, inspection_text, profile,
-    quad_study, CurveKind, Lang, Overlays, ProfileLine, Surface, Texts,
+    draw_overlays, error_maps, exact_image, heat_bar, heat_scale, inspect, inspection_text,
+    profile, quad_study, CurveKind, Lang, Overlays, ProfileLine, Surface, Texts,
 };
 use shadelab_wasm::{
     abi, Engine, ErrorsRequest, HeatRequest, InspectRequest, OverlaysRequest, ProfileRequest,
@@ -232,6 +232,7 @@ fn error_maps_are_the_command_line_error_maps() {
                     scale: Some(scale),
                     exact: true,
                     overlays: String::new(),
+                    bar: Some([12, 200]),
                 })
                 .unwrap();
             assert_eq!(answer.mean, m.map.mean);
@@ -243,7 +244,8 @@ fn error_maps_are_the_command_line_error_maps() {
             );
             assert_eq!(answer.scale, scale);
             let names: Vec<_> = answer.images.iter().map(|i| i.name).collect();
-            assert_eq!(names, ["heat", "exact"]);
+            assert_eq!(names, ["heat", "exact", "bar"]);
+            assert_eq!(engine.images()[2], rgba(&heat_bar(12, 200)));
             let heat = m.map.heat_image(scale, &exact, options.background);
             assert_eq!(engine.images()[0], rgba(&heat));
             assert_eq!(
@@ -256,6 +258,7 @@ fn error_maps_are_the_command_line_error_maps() {
                     scale: None,
                     exact: false,
                     overlays: String::new(),
+                    bar: None,
                 })
                 .unwrap();
             assert_eq!(own.scale, heat_scale(m.map.max));
@@ -294,7 +297,8 @@ fn error_maps_are_the_command_line_error_maps() {
             .errors(&ErrorsRequest {
                 scale: None,
                 exact: false,
-                overlays: String::new()
+                overlays: String::new(),
+                bar: None,
             })
             .unwrap_err()
             .0,
@@ -308,6 +312,7 @@ fn error_maps_are_the_command_line_error_maps() {
             scale: None,
             exact: false,
             overlays: String::new(),
+            bar: None,
         })
         .unwrap_err();
     assert!(
@@ -323,7 +328,8 @@ fn error_maps_are_the_command_line_error_maps() {
             .errors(&ErrorsRequest {
                 scale: Some(scale),
                 exact: false,
-                overlays: String::new()
+                overlays: String::new(),
+                bar: Some([0, 10]),
             })
             .is_err());
     }
