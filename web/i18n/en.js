@@ -233,7 +233,6 @@ export default {
   'cost.timeMeasured': 'Time: the median of {runs} frames rendered one method at a time.',
   'cost.min': 'fastest {ms}',
   'cost.evaluations': 'Lighting evaluations',
-  'cost.where': 'Where the model is evaluated',
   'cost.per_polygon': 'once per polygon ({polygons} drawn)',
   'cost.per_vertex': 'once per vertex of the polygons drawn',
   'cost.per_pixel': 'once per pixel ({pixels} shaded)',

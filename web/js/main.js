@@ -59,6 +59,8 @@ function summaryText(summary) {
 }
 
 function setStatus(text) {
+  // From here on the status says what happens now, not what the page said while loading.
+  $('#status').removeAttribute('data-i18n');
   $('#status').textContent = text;
 }
 

@@ -128,7 +128,7 @@ export class Inspector {
         const row = el('div', { class: `line level-${Math.min(level, 3)}${FORMULA.test(text) ? ' formula' : ''}` });
         // The walk's own value beside the textbook formula's: "[stepped: (…)]".
         const stepped = text.match(/^(.*?)(\s+\[[^\]]+\])$/);
-        if (stepped) row.append(stepped[1], el('span', { class: 'stepped', text: stepped[2].trim() }));
+        if (stepped) row.append(`${stepped[1]} `, el('span', { class: 'stepped', text: stepped[2].trim() }));
         else row.textContent = text;
         article.append(row);
       }
