@@ -27,6 +27,12 @@ async function quiet(page) {
   await page.evaluate(() => window.shadelab.instrumentsIdle());
 }
 
+/** A screenshot of the page from its top: the panels and the open instrument. */
+async function shot(page, name) {
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await page.screenshot({ path: path.join(ARTIFACTS, name) });
+}
+
 /** Clicks pixel (x, y) of a panel, as a user does, holding `modifiers`. */
 async function clickPixel(page, method, x, y, modifiers = []) {
   const canvas = page.locator(`.panel[data-method="${method}"] canvas`);
@@ -77,7 +83,7 @@ test('clicking a pixel inspects it with the numbers `shadelab explain` prints', 
     const k = (190 * 480 + 290) * 4;
     assert.deepEqual([px[k], px[k + 1], px[k + 2]], m.color, m.method);
   }
-  await page.screenshot({ path: path.join(ARTIFACTS, 'inspector.png') });
+  await shot(page, 'inspector.png');
 
   // Drawn by the tiled rasterizer, it says it explains the scanline reference,
   // and its colours are the panel's within 1/255; in fixed point it says so too.
@@ -156,7 +162,7 @@ test('choosing a row plots the intensity the panels show, with its derivative an
   for (const m of METHODS) assert.equal(await page.locator(`.panel[data-method="${m}"] svg .mark-profile`).count(), 2);
   await page.locator('.plot-intensity').hover({ position: { x: 200, y: 100 } });
   assert.match(await page.locator('#tool-profile .readout').innerText(), /^Pixel \(\d+, 230\): Flat [\d.]+ · Gouraud/);
-  await page.screenshot({ path: path.join(ARTIFACTS, 'profile.png') });
+  await shot(page, 'profile.png');
 
   // Alt+drag draws a line to plot along.
   const box = await page.locator('.panel[data-method="gouraud"] canvas').boundingBox();
@@ -213,7 +219,7 @@ test('the error maps of a sphere are those `shadelab errors` computes and prints
     }
     assert.equal(differing, 0, `${name}: the page's picture is the sheet's`);
   }
-  await page.screenshot({ path: path.join(ARTIFACTS, 'errors.png') });
+  await shot(page, 'errors.png');
   // The worst pixel, one click away.
   await page.locator('#tool-errors tr[data-method="gouraud"] button.link').click();
   await quiet(page);
@@ -259,7 +265,7 @@ test('each overlay draws on the panels what `shadelab render --overlay` draws', 
       assert.equal(differing, 0, `${m} with ${name}: the page's pixels are the command line's`);
       assert.ok(colored > 10, `${m}: ${colored} pixels in the colour of ${name}`);
     }
-    if (name === 'vertex-normals') await page.screenshot({ path: path.join(ARTIFACTS, 'overlays.png') });
+    if (name === 'vertex-normals') await shot(page, 'overlays.png');
     await page.locator(`input[data-overlay="${name}"][data-panel="all"]`).uncheck();
     await quiet(page);
     assert.deepEqual(await digests(page), plain, `${name} off: the pictures are back`);
@@ -299,7 +305,15 @@ test('an indexed palette of N shades draws exactly N shades, on the scanline ras
     assert.equal(s.gouraud.colours, shades, `Gouraud: ${s.gouraud.colours} colours`);
     assert.equal(s.phong.colours, shades, `Phong: ${s.phong.colours} colours`);
     assert.ok(s.flat.colours <= shades, `flat: ${s.flat.colours}`);
-    if (shades === 8) await page.screenshot({ path: path.join(ARTIFACTS, 'palette.png') });
+    if (shades === 8) {
+      // The inspector names the palette entry it drew.
+      await update(page, 's.pixel = [300, 240]');
+      await page.evaluate(() => window.shadelab.setTab('inspector'));
+      await quiet(page);
+      const text = await page.evaluate(() => window.shadelab.inspection.text);
+      assert.match(text, /Palette: intensity I = [\d.]+, shade k = min\(N − 1, ⌊I·8⌋\) = \d, entry 0 \+ \d = \d\./);
+      await shot(page, 'palette.png');
+    }
   }
   // The panel is the command line's picture.
   const png = path.join(TMP, 'palette.png');
@@ -326,7 +340,6 @@ test('fixed-point interpolation changes the picture; with 20 bits it is floating
   const coarse = await digests(page);
   assert.notEqual(coarse.gouraud, before.gouraud);
   assert.notEqual(coarse.phong, before.phong);
-  await page.screenshot({ path: path.join(ARTIFACTS, 'fixed-point.png') });
   const png = path.join(TMP, 'fixed.png');
   shadelab('render', await sceneFile(page, 'fixed.toml', 'gouraud'), '-o', png);
   assert.ok(Buffer.from((await decodePng(page, png)).rgba, 'base64').equals(await pixelsOf(page, 'gouraud')), 'the panel is the command line’s picture');
@@ -337,6 +350,11 @@ test('fixed-point interpolation changes the picture; with 20 bits it is floating
     for (let i = 0; i < fine.length; i++) worst = Math.max(worst, Math.abs(fine[i] - float[m][i]));
     assert.ok(worst <= 1, `${m}: 20 fraction bits differ from floating point by ${worst}`);
   }
+  // With 8 bits, along a row: the streaks of the stepped values, and their steps in the profile.
+  await update(page, 's.fixedPoint = 8; s.profile = { row: 240 }');
+  await page.evaluate(() => window.shadelab.setTab('profile'));
+  await quiet(page);
+  await shot(page, 'fixed-point.png');
   assert.deepEqual(problems, []);
   await page.close();
 });
@@ -357,7 +375,7 @@ test('the quad study turns a quad: whole, its centre changes; as two triangles, 
   assert.ok(Math.abs(corner.fans_centre - 0.5) < 0.02);
   assert.match(await page.locator('#tool-quad figure[data-kind="whole"] figcaption').innerText(), /centre: I = 0\.\d{3}/);
   await at(30);
-  await page.screenshot({ path: path.join(ARTIFACTS, 'quad.png') });
+  await shot(page, 'quad.png');
   assert.deepEqual(problems, []);
   await page.close();
 });
@@ -383,7 +401,7 @@ test('the cost of each method: lighting evaluations per polygon, vertex and pixe
   await page.waitForFunction(() => document.querySelectorAll('#tool-cost td.time .hint').length === 3, null, { timeout: 60000 });
   for (const m of METHODS) assert.match((await page.locator(`#tool-cost tr[data-method="${m}"] td.time`).innerText()).trim(), /^[\d.]+ \(fastest [\d.]+\)$/);
   await quiet(page);
-  await page.screenshot({ path: path.join(ARTIFACTS, 'cost.png') });
+  await shot(page, 'cost.png');
   assert.deepEqual(problems, []);
   await page.close();
 });
@@ -460,7 +478,7 @@ test('switching the language changes every label and explanation; the choice is 
     assert.deepEqual(untranslated, [], `${lang}: strings still in English`);
     await page.locator('#tab-inspector').click();
     await quiet(page);
-    await page.screenshot({ path: path.join(ARTIFACTS, `language-${lang}.png`) });
+    await shot(page, `language-${lang}.png`);
   }
   // The link carries the language: a new page opens in Czech.
   const hash = await page.evaluate(() => location.hash);

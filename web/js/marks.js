@@ -61,13 +61,25 @@ export class Marks {
     const m = this.inspection;
     if (m && m.walked.length >= 3) {
       add('polygon', { points: m.walked.map(([x, y]) => `${x},${y}`).join(' '), class: 'mark-polygon' });
+      // The vertices by the letters the inspector names them with, set outside the polygon.
+      const cx = m.walked.reduce((a, [x]) => a + x, 0) / m.walked.length;
+      const cy = m.walked.reduce((a, [, y]) => a + y, 0) / m.walked.length;
+      m.walked.forEach(([x, y], k) => {
+        const d = Math.hypot(x - cx, y - cy) || 1;
+        const off = 9 * u;
+        add('text', {
+          x: x + ((x - cx) / d) * off, y: y + ((y - cy) / d) * off + 5 * u,
+          'text-anchor': 'middle', 'font-size': 13 * u, class: 'mark-label mark-vertex',
+        }, String.fromCharCode(65 + (k % 26)));
+      });
     }
     if (m && m.p && m.q) {
       add('line', { x1: m.p[0], y1: m.p[1], x2: m.q[0], y2: m.q[1], class: 'mark-span' });
       for (const [name, [x, y], anchor] of [['P', m.p, 'end'], ['Q', m.q, 'start']]) {
         add('circle', { cx: x, cy: y, r: 3.5 * u, class: 'mark-point' });
         const dx = (anchor === 'end' ? -6 : 6) * u;
-        add('text', { x: x + dx, y: y - 5 * u, 'text-anchor': anchor, 'font-size': 14 * u, class: 'mark-label' }, name);
+        // Below the scanline: the polygon's vertex letters sit outside it, often above.
+        add('text', { x: x + dx, y: y + 16 * u, 'text-anchor': anchor, 'font-size': 14 * u, class: 'mark-label' }, name);
       }
     }
 

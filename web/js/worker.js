@@ -12,7 +12,7 @@
 //   {type: 'profile', id, scene, row | line}  -> {type: 'profile', id, profile}
 //   {type: 'quad', id, angle, size, curve}    -> {type: 'quad', id, quad, whole, fans}
 //   {type: 'texts', id, lang}            -> {type: 'texts', id, texts}
-//   {type: 'cost', id, scene, runs}      -> {type: 'cost', id, times, stats, cost}
+//   {type: 'cost', id, scene, runs, warmup} -> {type: 'cost', id, times, stats, cost}
 //   any request that fails               -> {type: 'error', id, request, message, crashed}
 //
 // A frame is the scene drawn, then, when asked, its overlays (`overlays`, a
@@ -98,6 +98,7 @@ const handlers = {
     // Each run timed alone, as a frame is: the median says what a frame costs.
     const times = [];
     let frame = null;
+    for (let k = 0; k < (msg.warmup ?? 0); k++) engine.render(msg.scene);
     for (let k = 0; k < Math.max(1, msg.runs); k++) {
       const start = performance.now();
       frame = engine.render(msg.scene);

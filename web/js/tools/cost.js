@@ -7,6 +7,8 @@ import { t, lab, formatNumber, formatCount } from '../i18n.js';
 import { el } from '../dom.js';
 
 const RUNS = 9;
+/** Frames rendered first and not counted: the engine's buffers and the browser's compiler settle. */
+const WARMUP = 2;
 /** Recent frames whose median time the table shows. */
 const RECENT = 30;
 const GRANULARITY = { flat: 'per_polygon', gouraud: 'per_vertex', phong: 'per_pixel' };
@@ -45,7 +47,7 @@ export class CostTool {
     const results = {};
     try {
       for (const p of this.page.panels) {
-        const reply = await p.ask({ type: 'cost', scene: this.page.sceneFor(p.method), runs: RUNS });
+        const reply = await p.ask({ type: 'cost', scene: this.page.sceneFor(p.method), runs: RUNS, warmup: WARMUP });
         results[p.method] = { median: median(reply.times), min: Math.min(...reply.times), runs: reply.times.length };
       }
       this.measured = { results, scene: this.page.panels.map((p) => this.page.sceneFor(p.method)).join('\n') };

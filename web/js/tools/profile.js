@@ -193,10 +193,12 @@ export class ProfileTool {
     });
     // Flat shading's jumps would flatten every other curve: the scale follows
     // the smooth curves, and the jumps run off it.
+    // The steep fall at a silhouette would do the same: the scale covers most
+    // of the slopes (the 95th percentile), and the rest run off it.
     const smooth = shown.filter((c) => c.kind !== 'flat');
-    let extent = 0.5;
-    for (const c of smooth.length ? smooth : shown) for (const v of c.derivative) if (v !== null) extent = Math.max(extent, Math.abs(v));
-    extent = Math.min(255, extent * 1.2);
+    const slopes = (smooth.length ? smooth : shown).flatMap((c) => c.derivative.filter((v) => v !== null).map(Math.abs)).sort((a, b) => a - b);
+    const typical = slopes.length ? slopes[Math.floor(0.95 * (slopes.length - 1))] : 0;
+    const extent = Math.min(255, Math.max(0.5, typical * 1.6));
     this.map.derivative = drawPlot(this.derivative, {
       x: range, y: [-extent, extent], zeroLine: true,
       series: shown.map((c) => ({ ...style(c.kind), points: c.derivative.map((v, k) => [xOf(k + 0.5), v]) })),

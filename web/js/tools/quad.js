@@ -26,7 +26,7 @@ export class QuadTool {
     const page = this.page;
     const s = page.state;
     section.append(el('h2', { text: t('tab.quad') }));
-    section.append(el('details', { class: 'explain', open: true }, [el('summary', { text: t('explain.what') }), el('p', { text: lab('about.quad') })]));
+    section.append(el('details', { class: 'explain' }, [el('summary', { text: t('explain.what') }), el('p', { text: lab('about.quad') })]));
     const box = el('div', { class: 'tool-controls' });
     section.append(box);
     this.controls = new Controls(box, () => page.changed());
