@@ -27,10 +27,13 @@ async function quiet(page) {
   await page.evaluate(() => window.shadelab.instrumentsIdle());
 }
 
-/** A screenshot of the page from its top: the panels and the open instrument. */
+/**
+ * A screenshot of the page's top, the panels and the open instrument: 1600×820
+ * pixels, as the README shows them (docs/images/viewer-*.png are copies).
+ */
 async function shot(page, name) {
   await page.evaluate(() => window.scrollTo(0, 0));
-  await page.screenshot({ path: path.join(ARTIFACTS, name) });
+  await page.screenshot({ path: path.join(ARTIFACTS, name), clip: { x: 0, y: 0, width: 1600, height: 820 } });
 }
 
 /** Clicks pixel (x, y) of a panel, as a user does, holding `modifiers`. */

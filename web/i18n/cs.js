@@ -201,9 +201,8 @@ export default {
   'errors.mean': 'Průměr',
   'errors.max': 'Max.',
   'errors.at': 'V pixelu',
-  'errors.compared': 'Pixely',
   'errors.inspect': 'Rozebrat tento pixel',
-  'errors.surfaceOnly': 'Chyby na škále 0–255, průměr absolutních rozdílů R, G, B. Pixely jen přesného povrchu: {pixels}, jen sítě: {meshOnly}.',
+  'errors.surfaceOnly': 'Chyby na škále 0–255, průměr absolutních rozdílů R, G, B přes pixely, které pokrývá síť i přesný povrch (porovnané pixely: {compared}). Pixely jen přesného povrchu: {pixels}, jen sítě: {meshOnly}.',
 
   'overlays.what': 'Překryv',
   'overlays.all': 'Všechny',

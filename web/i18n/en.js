@@ -202,9 +202,8 @@ export default {
   'errors.mean': 'Mean',
   'errors.max': 'Max',
   'errors.at': 'At pixel',
-  'errors.compared': 'Pixels',
   'errors.inspect': 'Inspect this pixel',
-  'errors.surfaceOnly': 'Errors in 0–255 units, the mean of |R|, |G|, |B| differences. {pixels} pixels only the exact surface covers, {meshOnly} only the mesh.',
+  'errors.surfaceOnly': 'Errors in 0–255 units, the mean of |R|, |G|, |B| differences, over the {compared} pixels both cover; {pixels} pixels only the exact surface covers, {meshOnly} only the mesh.',
 
   'overlays.what': 'Overlay',
   'overlays.all': 'All',

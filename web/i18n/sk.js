@@ -201,9 +201,8 @@ export default {
   'errors.mean': 'Priemer',
   'errors.max': 'Max.',
   'errors.at': 'V pixeli',
-  'errors.compared': 'Pixely',
   'errors.inspect': 'Rozobrať tento pixel',
-  'errors.surfaceOnly': 'Chyby na škále 0–255, priemer absolútnych rozdielov R, G, B. Pixely len presného povrchu: {pixels}, len siete: {meshOnly}.',
+  'errors.surfaceOnly': 'Chyby na škále 0–255, priemer absolútnych rozdielov R, G, B cez pixely, ktoré pokrýva sieť aj presný povrch (porovnané pixely: {compared}). Pixely len presného povrchu: {pixels}, len siete: {meshOnly}.',
 
   'overlays.what': 'Prekrytie',
   'overlays.all': 'Všetky',

@@ -90,7 +90,7 @@ export class ErrorsTool {
       this.scaleBox.append(el('p', { class: 'scale-title', text: lab('plot.error_scale') }), el('div', { class: 'scale-body' }, [canvas, labels]),
         el('p', { class: 'hint', text: t('errors.grey') }));
     }
-    const head = el('tr', {}, ['errors.method', 'errors.mean', 'errors.max', 'errors.at', 'errors.compared'].map((k) => el('th', { scope: 'col', text: t(k) })));
+    const head = el('tr', {}, ['errors.method', 'errors.mean', 'errors.max', 'errors.at'].map((k) => el('th', { scope: 'col', text: t(k) })));
     const rows = page.panels.map((p) => {
       const e = p.last.errors;
       const at = e.max_at
@@ -101,12 +101,11 @@ export class ErrorsTool {
         el('td', { class: 'mean', text: formatNumber(e.mean, 3) }),
         el('td', { class: 'max', text: formatNumber(e.max, 2) }),
         el('td', {}, [at]),
-        el('td', { text: formatCount(e.compared) }),
       ]);
     });
     this.table.append(
       el('table', {}, [el('thead', {}, [head]), el('tbody', {}, rows)]),
-      el('p', { class: 'hint', text: t('errors.surfaceOnly', { pixels: formatCount(frames[0].errors.surface_only), meshOnly: formatCount(frames[0].errors.mesh_only) }) }),
+      el('p', { class: 'hint', text: t('errors.surfaceOnly', { compared: formatCount(frames[0].errors.compared), pixels: formatCount(frames[0].errors.surface_only), meshOnly: formatCount(frames[0].errors.mesh_only) }) }),
     );
   }
 }
