@@ -1,5 +1,7 @@
 // Moving the camera and the light with the pointer, the wheel, two fingers
-// and the keyboard, on any of the three panels (all three share one camera).
+// and the keyboard, on any of the panels (all share one camera); and picking
+// what the instruments look at: a click picks a pixel, Alt+click a row,
+// Alt+drag a line. A press that moves less than a few pixels is a click.
 import { ZOOM_MIN, ZOOM_MAX } from './state.js';
 
 const DEGREES_PER_PIXEL = 0.5;

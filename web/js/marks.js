@@ -1,9 +1,9 @@
-// Marks drawn over a panel, never into its pixels: the inspected pixel, the
-// polygon the scanline walk went round with the scanline from P to Q, and the
-// profile's row or line. An SVG laid over the canvas, in the image's pixel
-// coordinates (pixel (x, y) covers x..x+1, y..y+1), so that a mark sits on
-// the pixel it names at any display size; strokes and labels keep their
-// size on the screen.
+// Marks drawn over a panel, never into its pixels: the inspected pixel, its
+// scanline, the polygon the scanline walk went round (its vertices lettered as
+// the inspector names them) with the span from P to Q, and the profile's row
+// or line. An SVG laid over the canvas, in the image's pixel coordinates
+// (pixel (x, y) covers x..x+1, y..y+1), so that a mark sits on the pixel it
+// names at any display size; strokes and labels keep their size on the screen.
 
 const SVG = 'http://www.w3.org/2000/svg';
 
@@ -59,6 +59,10 @@ export class Marks {
     }
 
     const m = this.inspection;
+    if (m && m.row !== null && m.row !== undefined) {
+      // The scanline through the pixel, faint across the image, bold from P to Q below.
+      add('line', { x1: 0, y1: m.row + 0.5, x2: w, y2: m.row + 0.5, class: 'mark-scanline' });
+    }
     if (m && m.walked.length >= 3) {
       add('polygon', { points: m.walked.map(([x, y]) => `${x},${y}`).join(' '), class: 'mark-polygon' });
       // The vertices by the letters the inspector names them with, set outside the polygon.

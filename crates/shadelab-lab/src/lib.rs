@@ -7,7 +7,7 @@
 //! | pixel inspector | `inspect` | [`inspect`], [`inspection_text`] ([`inspection_header`], [`method_inspection_text`]) |
 //! | scanline profile (Mach bands) | `profile` | [`profile()`] |
 //! | exact surfaces | `exact` | [`Surface`], [`ExactImage`] |
-//! | error maps, accuracy | `errors` | [`error_maps`], [`accuracy`] |
+//! | error maps, accuracy | `errors` | [`error_maps`], [`heat_scale`], [`accuracy`] |
 //! | overlays | `overlay` | [`draw_overlays`] |
 //! | interpolation on polygons | `quad` | [`quad_study`] |
 //! | cost | `cost` | [`measure_cost`] |
@@ -20,7 +20,8 @@
 //! are plotted as they are; [`error_maps`] gives each panel's
 //! [`ErrorMap::heat_image`] with [`heat_bar`] as the scale; overlays are
 //! [`draw_overlays`] on a rendered image; [`measure_cost`] takes the page's
-//! clock; the texts are [`Texts::new`]`(`[`Lang::negotiate`]`(navigator
+//! clock; one panel's account of a pixel is [`method_inspection_text`] under
+//! the shared [`inspection_header`]; the texts are [`Texts::new`]`(`[`Lang::negotiate`]`(navigator
 //! languages))`. The exact surface of a built-in model is
 //! [`Surface::for_builtin`].
 //!
