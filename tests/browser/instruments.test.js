@@ -28,12 +28,13 @@ async function quiet(page) {
 }
 
 /**
- * A screenshot of the page's top, the panels and the open instrument: 1600×820
- * pixels, as the README shows them (docs/images/viewer-*.png are copies).
+ * A screenshot of the page's top, the panels and the open instrument: 1600
+ * pixels wide, `height` high, as the README shows them (docs/images/viewer-*.png
+ * are copies).
  */
-async function shot(page, name) {
+async function shot(page, name, height = 820) {
   await page.evaluate(() => window.scrollTo(0, 0));
-  await page.screenshot({ path: path.join(ARTIFACTS, name), clip: { x: 0, y: 0, width: 1600, height: 820 } });
+  await page.screenshot({ path: path.join(ARTIFACTS, name), clip: { x: 0, y: 0, width: 1600, height } });
 }
 
 /** Clicks pixel (x, y) of a panel, as a user does, holding `modifiers`. */
@@ -165,7 +166,7 @@ test('choosing a row plots the intensity the panels show, with its derivative an
   for (const m of METHODS) assert.equal(await page.locator(`.panel[data-method="${m}"] svg .mark-profile`).count(), 2);
   await page.locator('.plot-intensity').hover({ position: { x: 200, y: 100 } });
   assert.match(await page.locator('#tool-profile .readout').innerText(), /^Pixel \(\d+, 230\): Flat [\d.]+ · Gouraud/);
-  await shot(page, 'profile.png');
+  await shot(page, 'profile.png', 1000);
 
   // Alt+drag draws a line to plot along.
   const box = await page.locator('.panel[data-method="gouraud"] canvas').boundingBox();

@@ -34,7 +34,7 @@ export function drawPlot(canvas, spec) {
   g.clearRect(0, 0, cssW, cssH);
   const font = parseFloat(getComputedStyle(canvas).fontSize) || 13;
   g.font = `${font * 0.85}px system-ui, sans-serif`;
-  const yTicks = ticks(spec.y[0], spec.y[1], Math.max(2, Math.round(cssH / 40)));
+  const yTicks = ticks(spec.y[0], spec.y[1], Math.max(4, Math.round(cssH / 35)));
   const digits = yTicks.step < 1 ? Math.min(3, Math.ceil(-Math.log10(yTicks.step))) : 0;
   const yText = yTicks.values.map((v) => formatNumber(v, digits));
   const left = Math.ceil(Math.max(...yText.map((s) => g.measureText(s).width)) + font * 1.6);
