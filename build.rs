@@ -26,6 +26,9 @@ fn main() {
         "crates/shadelab-core/Cargo.toml",
         "crates/shadelab-io/src",
         "crates/shadelab-io/Cargo.toml",
+        "crates/shadelab-lab/src",
+        "crates/shadelab-lab/texts",
+        "crates/shadelab-lab/Cargo.toml",
         "Cargo.lock",
     ] {
         println!("cargo:rerun-if-changed={watched}");

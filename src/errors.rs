@@ -7,7 +7,7 @@ use anyhow::Context;
 use plotters::prelude::*;
 use shadelab_core::{Image, Rgb8};
 use shadelab_io::write_png;
-use shadelab_lab::{error_maps, exact_image, heat_bar, Texts};
+use shadelab_lab::{error_maps, exact_image, heat_bar, heat_scale, Texts};
 
 use crate::cli::ErrorsArgs;
 use crate::lab::{load, require_exact_surface};
@@ -41,7 +41,7 @@ pub fn run(args: &ErrorsArgs) -> Result<(), Failure> {
     let (exact, maps) = error_maps(&loaded.scene, &options, &surface).map_err(input_error)?;
     let texts = Texts::new(args.lang.into());
     let largest = maps.iter().map(|m| m.map.max).fold(0f32, f32::max);
-    let scale = args.scale.unwrap_or_else(|| nice_ceiling(largest));
+    let scale = args.scale.unwrap_or_else(|| heat_scale(largest));
 
     let (w, h) = (options.width, options.height);
     let sheet_w = 4 * w + 3 * GAP + BAR_AREA;
@@ -162,17 +162,4 @@ pub fn run(args: &ErrorsArgs) -> Result<(), Failure> {
         )
     };
     print().map_err(output_error)
-}
-
-/// The smallest of 1, 2, 2.5, 5 times a power of ten that is at least `v`.
-fn nice_ceiling(v: f32) -> f32 {
-    if v.is_nan() || v <= 0.0 {
-        return 1.0;
-    }
-    let p = 10f32.powf(v.log10().floor());
-    [1.0, 2.0, 2.5, 5.0, 10.0]
-        .into_iter()
-        .map(|m| m * p)
-        .find(|&c| c >= v)
-        .unwrap_or(10.0 * p)
 }

@@ -5,157 +5,18 @@
 // Run from the repository root after `cargo build --release`:
 //   (cd tests/browser && npm ci && npm test)
 // SHADELAB_BIN names another binary; CHROMIUM another browser.
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn, execFileSync } from 'node:child_process';
+import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import {
+  useViewer, context, BIN, ARTIFACTS, BUNNY, METHODS,
+  openViewer, settle, update, digests, statistics, panelPixels, decodePng, median, percentile,
+} from './harness.js';
 
-const HERE = path.dirname(fileURLToPath(import.meta.url));
-const ROOT = path.resolve(HERE, '../..');
-const BIN = process.env.SHADELAB_BIN ?? path.join(ROOT, 'target/release/shadelab');
-const ARTIFACTS = path.join(HERE, 'artifacts');
-const BUNNY = [path.join(ROOT, '../shared/models/stanford-bunny.obj'), '/work/shared/models/stanford-bunny.obj'].find((p) => fs.existsSync(p));
-const METHODS = ['flat', 'gouraud', 'phong'];
-
-let server;
-let baseUrl;
-let context;
-let userDataDir;
-
-before(async () => {
-  fs.mkdirSync(ARTIFACTS, { recursive: true });
-  server = spawn(BIN, ['view', '--port', '0', '--no-open'], { stdio: ['ignore', 'pipe', 'inherit'] });
-  baseUrl = await new Promise((resolve, reject) => {
-    let out = '';
-    server.stdout.on('data', (chunk) => {
-      out += chunk;
-      const m = /shadelab viewer: (http:\/\/\S+)/.exec(out);
-      if (m) resolve(m[1]);
-    });
-    server.on('exit', (code) => reject(new Error(`shadelab view exited with ${code}: ${out}`)));
-  });
-  userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'shadelab-chromium-'));
-  context = await chromium.launchPersistentContext(userDataDir, {
-    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-    headless: true,
-    acceptDownloads: true,
-    viewport: { width: 1600, height: 1000 },
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  });
-});
-
-after(async () => {
-  await context?.close();
-  server?.kill();
-  if (userDataDir) fs.rmSync(userDataDir, { recursive: true, force: true });
-});
-
-/** Opens the viewer (with `hash`), waits for three frames; returns the page and its problems. */
-async function openViewer(hash = '', viewport) {
-  const page = await context.newPage();
-  if (viewport) await page.setViewportSize(viewport);
-  const problems = [];
-  page.on('console', (m) => {
-    if (m.type() === 'error' || m.type() === 'warning') problems.push(`console ${m.type()}: ${m.text()}`);
-  });
-  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
-  page.on('requestfailed', (r) => problems.push(`request failed: ${r.url()} ${r.failure()?.errorText}`));
-  page.on('request', (r) => {
-    const u = new URL(r.url());
-    if (!['blob:', 'data:'].includes(u.protocol) && u.host !== new URL(baseUrl).host) problems.push(`request left the server: ${r.url()}`);
-  });
-  await page.goto(baseUrl + hash);
-  await page.waitForFunction(() => window.shadelab?.panels.every((p) => p.frames > 0), null, { timeout: 60000 });
-  await settle(page);
-  return { page, problems };
-}
-
-/** Waits until no panel has a frame being drawn or waiting. */
-async function settle(page) {
-  await page.evaluate(() => new Promise((r) => setTimeout(r, 200)));
-  await page.evaluate(() => window.shadelab.idle());
-}
-
-/** Changes the state as a control would, and waits for the three frames. */
-async function update(page, body) {
-  await page.evaluate(`window.shadelab.update((s) => { ${body} })`);
-  await settle(page);
-}
-
-/** SHA-256 of each panel's pixels. */
-async function digests(page) {
-  return page.evaluate(async () => {
-    const out = {};
-    for (const p of window.shadelab.panels) {
-      const data = p.context.getImageData(0, 0, p.canvas.width, p.canvas.height).data;
-      const hash = await crypto.subtle.digest('SHA-256', data);
-      out[p.method] = [...new Uint8Array(hash)].map((b) => b.toString(16).padStart(2, '0')).join('');
-    }
-    return out;
-  });
-}
-
-/** Per panel: covered pixels (not background), distinct colours, highlight pixels, brightest green. */
-async function statistics(page) {
-  return page.evaluate(() => {
-    const out = {};
-    const bg = window.shadelab.state.background;
-    for (const p of window.shadelab.panels) {
-      const d = p.context.getImageData(0, 0, p.canvas.width, p.canvas.height).data;
-      let covered = 0;
-      let highlight = 0;
-      let maxGreen = 0;
-      const colours = new Set();
-      for (let i = 0; i < d.length; i += 4) {
-        if (d[i] === bg[0] && d[i + 1] === bg[1] && d[i + 2] === bg[2]) continue;
-        covered += 1;
-        colours.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
-        maxGreen = Math.max(maxGreen, d[i + 1]);
-        if (d[i + 1] > 150) highlight += 1;
-      }
-      out[p.method] = { covered, colours: colours.size, highlight, maxGreen };
-    }
-    return out;
-  });
-}
-
-/** One panel's RGBA pixels, base64. */
-async function panelPixels(page, method) {
-  return page.evaluate((m) => {
-    const p = window.shadelab.panels.find((q) => q.method === m);
-    const d = p.context.getImageData(0, 0, p.canvas.width, p.canvas.height).data;
-    let s = '';
-    for (let i = 0; i < d.length; i += 0x8000) s += String.fromCharCode(...d.subarray(i, i + 0x8000));
-    return btoa(s);
-  }, method);
-}
-
-/** A PNG file's RGBA pixels decoded by the browser, with its size. */
-async function decodePng(page, file) {
-  const b64 = fs.readFileSync(file).toString('base64');
-  return page.evaluate(async (data) => {
-    const bytes = Uint8Array.from(atob(data), (c) => c.charCodeAt(0));
-    const bitmap = await createImageBitmap(new Blob([bytes], { type: 'image/png' }), { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
-    const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
-    const g = canvas.getContext('2d');
-    g.drawImage(bitmap, 0, 0);
-    const d = g.getImageData(0, 0, bitmap.width, bitmap.height).data;
-    let s = '';
-    for (let i = 0; i < d.length; i += 0x8000) s += String.fromCharCode(...d.subarray(i, i + 0x8000));
-    return { width: bitmap.width, height: bitmap.height, rgba: btoa(s) };
-  }, b64);
-}
-
-const median = (xs) => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s.length % 2 ? s[(s.length - 1) / 2] : (s[s.length / 2 - 1] + s[s.length / 2]) / 2;
-};
-const percentile = (xs, q) => [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor(q * xs.length))];
+useViewer();
 
 test('the page loads with no console error, offline, and all three panels draw the model', async () => {
   const { page, problems } = await openViewer();
@@ -574,7 +435,7 @@ test('the exported static site works from another web server', async () => {
 test('the layout fits a laptop screen and a projector', async () => {
   for (const [name, viewport] of [['laptop-1366x768', { width: 1366, height: 768 }], ['projector-1920x1080', { width: 1920, height: 1080 }], ['narrow-800x900', { width: 800, height: 900 }]]) {
     const { page, problems } = await openViewer('', viewport);
-    const boxes = await page.locator('.panel canvas').evaluateAll((cs) => cs.map((c) => c.getBoundingClientRect().toJSON()));
+    const boxes = await page.locator('.panel:not([hidden]) canvas').evaluateAll((cs) => cs.map((c) => c.getBoundingClientRect().toJSON()));
     const width = await page.evaluate(() => document.documentElement.scrollWidth);
     assert.ok(width <= viewport.width, `${name}: no horizontal scrolling (${width})`);
     if (viewport.width >= 1366) {
@@ -586,7 +447,7 @@ test('the layout fits a laptop screen and a projector', async () => {
       // Presenting hides the controls; the panels keep (or grow to) the screen's size.
       await page.getByRole('button', { name: 'Present' }).click();
       assert.ok(await page.locator('#controls').isHidden());
-      const big = await page.locator('.panel canvas').evaluateAll((cs) => cs.map((c) => c.getBoundingClientRect().toJSON()));
+      const big = await page.locator('.panel:not([hidden]) canvas').evaluateAll((cs) => cs.map((c) => c.getBoundingClientRect().toJSON()));
       assert.ok(big.every((b, i) => b.width >= boxes[i].width - 1 && b.bottom <= viewport.height), JSON.stringify(big));
       await page.screenshot({ path: path.join(ARTIFACTS, `${name}-presenting.png`) });
       await page.getByRole('button', { name: 'Present' }).click();

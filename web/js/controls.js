@@ -3,20 +3,10 @@
 // `refresh()` brings every control back in line with the state (after a
 // preset, a reset, a drag on a panel or a link).
 import { t } from './i18n.js';
+import { el } from './dom.js';
 
 let uid = 0;
 const nextId = (name) => `c-${name}-${++uid}`;
-
-function el(tag, attrs = {}, children = []) {
-  const e = document.createElement(tag);
-  for (const [k, v] of Object.entries(attrs)) {
-    if (k === 'text') e.textContent = v;
-    else if (k in e && typeof v !== 'string') e[k] = v;
-    else e.setAttribute(k, v);
-  }
-  for (const c of children) if (c) e.append(c);
-  return e;
-}
 
 const toHex = (c) => `#${c.map((v) => Math.round(v).toString(16).padStart(2, '0')).join('')}`;
 const fromHex = (h) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16));
@@ -37,6 +27,13 @@ export class Controls {
     const fs = el('fieldset', { 'data-group': name }, [el('legend', { text: t(key) })]);
     this.form.append(fs);
     return fs;
+  }
+
+  /** A group of controls outside the form (in the side panel): a plain container. */
+  section(parent, name) {
+    const div = el('div', { class: 'control-section', 'data-group': name });
+    parent.append(div);
+    return div;
   }
 
   /** A labelled <select>; `options()` gives [[value, label, disabled?]]. */
@@ -66,9 +63,10 @@ export class Controls {
   /** A slider with a number box beside it, both labelled. */
   range(parent, { name, label, min, max, step, get, set, hint, visible }) {
     const id = nextId(name);
-    const bounds = () => (typeof min === 'function' ? [min(), max()] : [min, max]);
+    const value = (v) => (typeof v === 'function' ? v() : v);
+    const bounds = () => [value(min), value(max)];
     const range = el('input', { type: 'range', id, name, step: String(step) });
-    const number = el('input', { type: 'number', step: String(step), 'aria-label': `${label} (number)` });
+    const number = el('input', { type: 'number', step: String(step), 'aria-label': t('control.number', { label }) });
     const hintEl = hint ? el('p', { class: 'hint' }) : null;
     const row = el('div', { class: 'row' }, [el('label', { for: id, text: label }), el('div', { class: 'pair' }, [range, number])]);
     const apply = (input) => {
@@ -158,7 +156,8 @@ export class Controls {
       return input;
     });
     const sync = () => boxes.forEach((b, i) => {
-      if (document.activeElement !== b) b.value = String(Number(get()[i].toFixed(3)));
+      const v = get()[i];
+      if (document.activeElement !== b) b.value = v === null ? '' : String(Number(v.toFixed(3)));
     });
     this.refreshers.push(sync);
     sync();
@@ -192,17 +191,33 @@ export class Controls {
     return b;
   }
 
-  /** A file picker. */
+  /**
+   * A file picker: a button in the page's language that opens the browser's
+   * file dialog (the input itself would speak the browser's language).
+   */
   file(parent, { name, label, accept, hint, onfile }) {
     const id = nextId(name);
-    const input = el('input', { type: 'file', id, name, accept });
+    const input = el('input', { type: 'file', id, name, accept, class: 'visually-hidden', tabindex: '-1', 'aria-label': label });
     input.addEventListener('change', () => {
       if (input.files.length) onfile(input.files[0]);
       input.value = '';
     });
-    parent.append(el('div', { class: 'row file-row' }, [el('label', { for: id, text: label }), input]));
+    const button = el('button', { type: 'button', text: label });
+    button.addEventListener('click', () => input.click());
+    parent.append(el('div', { class: 'row file-row' }, [button, input]));
     parent.append(el('p', { class: 'hint', text: hint }));
     return input;
+  }
+
+  /** An explanation folded under a summary; `text()` fills it on refresh. */
+  details(parent, { summary, text }) {
+    const body = el('p', { class: 'explain' });
+    const d = el('details', { class: 'explain' }, [el('summary', { text: summary }), body]);
+    const sync = () => (body.textContent = text());
+    this.refreshers.push(sync);
+    sync();
+    parent.append(d);
+    return d;
   }
 
   /** A line of text that `text()` fills on refresh. */

@@ -1,12 +1,44 @@
 // String lookup: every visible string comes from a table keyed by name
-// (i18n/en.js), so that translations are new tables, not code changes.
+// (i18n/en.js and its translations ru.js, sk.js, cs.js), so that a language
+// is a new table, not a code change. The instruments' own texts (the
+// explanations of each method, the inspector's sentences) come from the
+// shadelab-lab crate through the WebAssembly, in the same language: `lab(id)`.
 import en from '../i18n/en.js';
+import { LANGUAGES } from './state.js';
 
 let table = en;
+let labTexts = {};
+let current = 'en';
 
-/** Uses `strings` (same keys as en.js; missing keys fall back to English). */
-export function setStrings(strings) {
+/** The names of the languages, each in itself (for the switch). */
+export const LANGUAGE_NAMES = { en: 'English', ru: 'Русский', sk: 'Slovenčina', cs: 'Čeština' };
+
+/** The first of the browser's preferred languages (BCP 47 tags) that the page speaks, else English. */
+export function negotiate(preferred) {
+  for (const tag of preferred ?? []) {
+    const primary = String(tag).split(/[-_]/)[0].toLowerCase();
+    if (LANGUAGES.includes(primary)) return primary;
+  }
+  return 'en';
+}
+
+/**
+ * Switches to language `lang`: loads its table and, through `loadLabTexts(lang)`,
+ * the instruments' texts. Missing keys fall back to English (a test keeps the
+ * tables complete).
+ */
+export async function setLanguage(lang, loadLabTexts) {
+  const strings = lang === 'en' ? en : (await import(`../i18n/${lang}.js`)).default;
+  const lab = await loadLabTexts(lang);
   table = { ...en, ...strings };
+  labTexts = lab;
+  current = lang;
+  document.documentElement.lang = lang;
+}
+
+/** The language in use. */
+export function language() {
+  return current;
 }
 
 /** The string for `key`, with `{name}` replaced by `values.name`. */
@@ -16,6 +48,20 @@ export function t(key, values = {}) {
     console.warn(`missing string ${key}`);
     return key;
   }
+  return fill(text, values);
+}
+
+/** The instruments' text `id` (shadelab-lab's texts/*.toml), filled like `t`. */
+export function lab(id, values = {}) {
+  const text = labTexts[id];
+  if (text === undefined) {
+    console.warn(`missing text ${id}`);
+    return id;
+  }
+  return fill(text, values);
+}
+
+function fill(text, values) {
   return text.replace(/\{(\w+)\}/g, (_, name) => (name in values ? String(values[name]) : `{${name}}`));
 }
 
@@ -27,7 +73,12 @@ export function translateDocument(root = document) {
   document.title = t('app.title');
 }
 
-/** Formats an integer with thin grouping, as the page shows counts. */
+/** Formats an integer with the language's grouping, as the page shows counts. */
 export function formatCount(n) {
   return Number(n).toLocaleString(t('app.locale'));
+}
+
+/** Formats a number with `digits` decimals in the language's style (decimal comma in ru, sk, cs). */
+export function formatNumber(x, digits) {
+  return Number(x).toLocaleString(t('app.locale'), { minimumFractionDigits: digits, maximumFractionDigits: digits, useGrouping: false });
 }

@@ -1,5 +1,7 @@
 // Moving the camera and the light with the pointer, the wheel, two fingers
-// and the keyboard, on any of the three panels (all three share one camera).
+// and the keyboard, on any of the panels (all share one camera); and picking
+// what the instruments look at: a click picks a pixel, Alt+click a row,
+// Alt+drag a line. A press that moves less than a few pixels is a click.
 import { ZOOM_MIN, ZOOM_MAX } from './state.js';
 
 const DEGREES_PER_PIXEL = 0.5;
@@ -24,11 +26,30 @@ export function turnLight(position, dAzimuth, dElevation) {
   ];
 }
 
+/** A pointer further than this from where it went down (CSS pixels) drags; nearer, it clicks. */
+const CLICK_SLOP = 4;
+
+/** The image pixel under a pointer event on `canvas`, clamped to the image. */
+export function pixelAt(canvas, e) {
+  const r = canvas.getBoundingClientRect();
+  const fx = ((e.clientX - r.left) / r.width) * canvas.width;
+  const fy = ((e.clientY - r.top) / r.height) * canvas.height;
+  return {
+    x: Math.min(canvas.width - 1, Math.max(0, Math.floor(fx))),
+    y: Math.min(canvas.height - 1, Math.max(0, Math.floor(fy))),
+    fx: Math.min(canvas.width, Math.max(0, fx)),
+    fy: Math.min(canvas.height, Math.max(0, fy)),
+  };
+}
+
 /**
  * Wires `canvases` to `state`; `changed()` re-renders; `dragMode()` is
- * 'camera' or 'light' (Shift swaps it while held).
+ * 'camera' or 'light' (Shift swaps it while held). A click (no drag) calls
+ * `picks.pixel(x, y)`; with Alt (or Ctrl, or ⌘) `picks.row(y)`, and an
+ * Alt+drag draws a line, `picks.preview([x0, y0, x1, y1] | null)` while
+ * dragging and `picks.line([x0, y0, x1, y1])` at the end.
  */
-export function attachInteraction(canvases, state, changed, dragMode, resetCamera) {
+export function attachInteraction(canvases, state, changed, dragMode, resetCamera, picks) {
   const pointers = new Map();
   let pinch = null;
   let mode = 'camera';
@@ -47,9 +68,11 @@ export function attachInteraction(canvases, state, changed, dragMode, resetCamer
     canvas.addEventListener('pointerdown', (e) => {
       if (e.button !== 0 && e.pointerType === 'mouse') return;
       canvas.setPointerCapture(e.pointerId);
-      pointers.set(e.pointerId, { x: e.clientX, y: e.clientY });
+      const at = { x: e.clientX, y: e.clientY };
+      pointers.set(e.pointerId, { ...at, start: at, dragging: false, image: pixelAt(canvas, e) });
       const wanted = dragMode();
-      mode = e.shiftKey ? (wanted === 'light' ? 'camera' : 'light') : wanted;
+      if (e.altKey || e.ctrlKey || e.metaKey) mode = 'line';
+      else mode = e.shiftKey ? (wanted === 'light' ? 'camera' : 'light') : wanted;
       if (pointers.size === 2) {
         const [a, b] = [...pointers.values()];
         pinch = { distance: Math.hypot(a.x - b.x, a.y - b.y), zoom: state.camera.zoom };
@@ -57,11 +80,11 @@ export function attachInteraction(canvases, state, changed, dragMode, resetCamer
       e.preventDefault();
     });
     canvas.addEventListener('pointermove', (e) => {
-      const last = pointers.get(e.pointerId);
-      if (!last) return;
+      const p = pointers.get(e.pointerId);
+      if (!p) return;
       const now = { x: e.clientX, y: e.clientY };
-      pointers.set(e.pointerId, now);
       if (pointers.size >= 2 && pinch) {
+        Object.assign(p, now);
         const [a, b] = [...pointers.values()];
         const distance = Math.hypot(a.x - b.x, a.y - b.y);
         if (pinch.distance > 0) {
@@ -70,14 +93,40 @@ export function attachInteraction(canvases, state, changed, dragMode, resetCamer
         }
         return;
       }
-      move(mode, now.x - last.x, now.y - last.y);
+      if (!p.dragging && Math.hypot(now.x - p.start.x, now.y - p.start.y) <= CLICK_SLOP) return;
+      p.dragging = true;
+      if (mode === 'line') {
+        const end = pixelAt(canvas, e);
+        picks.preview([p.image.fx, p.image.fy, end.fx, end.fy]);
+      } else {
+        // The first move past the slop moves by all of it: a drag loses nothing.
+        move(mode, now.x - p.x, now.y - p.y);
+      }
+      Object.assign(p, now);
     });
-    const release = (e) => {
+    const release = (e, cancelled) => {
+      const p = pointers.get(e.pointerId);
       pointers.delete(e.pointerId);
+      const wasPinch = pinch !== null;
       if (pointers.size < 2) pinch = null;
+      if (!p || cancelled || wasPinch) {
+        if (mode === 'line') picks.preview(null);
+        return;
+      }
+      if (mode === 'line') {
+        picks.preview(null);
+        if (p.dragging) {
+          const end = pixelAt(canvas, e);
+          picks.line([p.image.fx, p.image.fy, end.fx, end.fy].map((v) => Number(v.toFixed(1))));
+        } else {
+          picks.row(p.image.y);
+        }
+      } else if (!p.dragging) {
+        picks.pixel(p.image.x, p.image.y);
+      }
     };
-    canvas.addEventListener('pointerup', release);
-    canvas.addEventListener('pointercancel', release);
+    canvas.addEventListener('pointerup', (e) => release(e, false));
+    canvas.addEventListener('pointercancel', (e) => release(e, true));
     canvas.addEventListener(
       'wheel',
       (e) => {

@@ -1,26 +1,40 @@
 // The viewer: three panels (flat | Gouraud | Phong), each rendered by
-// shadelab's WebAssembly in its own worker from the same scene file, and the
-// controls that change that scene. Everything the page knows is in `state`;
-// every change re-renders the three panels and rewrites the link.
-import { t, translateDocument, formatCount } from './i18n.js';
-import { Panel } from './panels.js';
-import { Controls } from './controls.js';
+// shadelab's WebAssembly in its own worker from the same scene file, the
+// controls that change that scene, and beside them the instruments that
+// explain the pictures. Everything the page knows is in `state` (the scene
+// and the instruments' settings) and `view` (language, open tab); every
+// change re-renders the three panels and rewrites the link. Instruments
+// compute on demand, once the panels are still, so dragging stays fast.
+import { t, lab, translateDocument, formatCount, setLanguage, negotiate, language, LANGUAGE_NAMES } from './i18n.js';
+import { Panel, ImagePanel, paint } from './panels.js';
+import { buildForm } from './form.js';
+import { Side } from './side.js';
 import { attachInteraction } from './interaction.js';
 import { exportPng, exportScene } from './export.js';
+import { heatScale } from './tools/errors.js';
 import {
-  METHODS, PANEL_SIZES, PRESETS, MAX_FILE_MIB, MESH_EXTENSIONS, DEFAULT_LIGHT_POSITION, ZOOM_MIN, ZOOM_MAX,
-  defaultState, sceneToml, toHash, fromHash, presetOf,
+  METHODS, MAX_FILE_MIB, LANGUAGES,
+  defaultState, defaultView, sceneToml, toHash, fromHash, hasExactSurface,
 } from './state.js';
 
 const $ = (selector) => document.querySelector(selector);
 
 let state = defaultState();
+let view = defaultView();
 let models = [];
 /** The user's file as loaded into the engines: its summary, or null. */
 let userFile = null;
 let panels = [];
-let controls = null;
+let exactPanel = null;
+let form = null;
+let side = null;
 let dragMode = 'camera';
+/** Counts changes of the state: answers computed for an older one are dropped. */
+let generation = 0;
+/** The scale the error maps were last asked for (the three share one). */
+let errorScale = 10;
+/** The colour bar of the error scale, from the flat panel's last error map. */
+let errorBar = null;
 
 // ---- messages ----
 
@@ -45,30 +59,59 @@ function summaryText(summary) {
 }
 
 function setStatus(text) {
+  // From here on the status says what happens now, not what the page said while loading.
+  $('#status').removeAttribute('data-i18n');
   $('#status').textContent = text;
 }
 
 // ---- rendering ----
 
 const modelInfo = () => models.find((m) => m.name === state.model) ?? null;
+const errorsShown = () => state.errors && hasExactSurface(state);
 
 let linkTimer = 0;
 function render() {
-  for (const panel of panels) panel.render(sceneToml(state, panel.method));
+  const errors = errorsShown();
+  if (state.errorScale !== null) errorScale = state.errorScale;
+  for (const panel of panels) {
+    panel.render({
+      scene: sceneToml(state, panel.method),
+      overlays: state.overlays[panel.method].join(','),
+      errors: errors ? { scale: errorScale, exact: panel.method === 'flat', bar: panel.method === 'flat' ? [16, 200] : undefined } : null,
+      generation,
+    });
+  }
+  document.body.classList.toggle('showing-errors', errors);
+  exactPanel.figure.hidden = !errors;
+  markPanels();
   clearTimeout(linkTimer);
   linkTimer = setTimeout(writeLink, 150);
 }
 
+/** Redraws the panels as the state says (after a measurement drew plain frames). */
+function rerender() {
+  render();
+}
+
+function markPanels() {
+  const profile = state.profile;
+  for (const p of [...panels, exactPanel]) p.marks.set({ pixel: state.pixel, profile });
+}
+
 function writeLink() {
-  const hash = toHash(state);
+  const hash = toHash(state, view);
   if (hash !== location.hash && !(hash === '' && location.hash === '')) {
     history.replaceState(null, '', hash || location.pathname + location.search);
   }
 }
 
 function changed() {
-  if (state.polygons === 'whole') state.rasterizer = 'scanline';
-  controls.refresh();
+  generation += 1;
+  if (state.pixel && state.pixel.some((v) => v >= state.size)) state.pixel = null;
+  if (state.profile?.row !== undefined && state.profile.row >= state.size) state.profile = { row: state.size - 1 };
+  form.refresh();
+  side.refresh();
+  side.tools.inspector.invalidate();
   render();
 }
 
@@ -82,12 +125,85 @@ function panelError(panel, error) {
   lastError = text;
 }
 
-function panelFrame() {
+function panelFrame(panel, frame) {
   // A good frame after a failed one: the render error has served its purpose
   // (any other message stays until dismissed).
   if (lastError && !$('#message').hidden && $('#message .message-text').textContent === lastError) clearMessage();
   lastError = '';
+  if (frame.errors && panel.method === 'flat') {
+    if (frame.exact) exactPanel.show(frame.exact);
+    if (frame.bar) errorBar = frame.bar;
+  }
+  if (panels.every((p) => p.last?.generation === frame.generation)) framesComplete();
 }
+
+/** All three panels show the same state: share the error scale, then let the instruments catch up. */
+async function framesComplete() {
+  if (panels.every((p) => p.last?.errors)) {
+    const largest = Math.max(...panels.map((p) => p.last.errors.max));
+    const scale = state.errorScale ?? heatScale(largest);
+    errorScale = scale;
+    await Promise.all(panels.map((p) => p.recolour(scale)));
+  }
+  side.tools.errors.update();
+  scheduleInstruments();
+}
+
+let instrumentTimer = 0;
+/** Whether an instrument update is waiting or running (for `instrumentsIdle`). */
+let instrumentsBusy = false;
+/** Runs the open instrument once the panels have been still for a moment. */
+function scheduleInstruments() {
+  clearTimeout(instrumentTimer);
+  instrumentsBusy = true;
+  instrumentTimer = setTimeout(runInstruments, 80);
+}
+
+async function runInstruments() {
+  const mine = instrumentTimer;
+  try {
+    await Promise.all(panels.map((p) => p.idle()));
+    await side.update();
+  } finally {
+    if (mine === instrumentTimer) instrumentsBusy = false;
+  }
+}
+
+// ---- the instruments, as the side panel and the panels ask for them ----
+
+function setTab(name) {
+  if (view.tab === name) return;
+  view.tab = name;
+  side.show();
+  writeLink();
+  scheduleInstruments();
+}
+
+function inspectPixel(x, y) {
+  state.pixel = [x, y];
+  view.tab = 'inspector';
+  side.show();
+  changed();
+}
+
+const picks = {
+  pixel: (x, y) => inspectPixel(x, y),
+  row: (y) => {
+    state.profile = { row: y };
+    view.tab = 'profile';
+    side.show();
+    changed();
+  },
+  line: (line) => {
+    state.profile = { line };
+    view.tab = 'profile';
+    side.show();
+    changed();
+  },
+  preview: (line) => {
+    for (const p of [...panels, exactPanel]) p.marks.set({ preview: line });
+  },
+};
 
 // ---- the user's file ----
 
@@ -111,7 +227,7 @@ async function openFile(file) {
     summaries = await Promise.all(panels.map((p) => p.loadFile(file.name, bytes)));
   } catch (error) {
     setStatus('');
-    showMessage(t('error.kept', { message: error.message }));
+    showMessage(t('error.kept', { message: t('error.file', { message: error.message }) }));
     return;
   }
   userFile = summaries[0];
@@ -148,130 +264,82 @@ function attachDrop(zone) {
   });
 }
 
-// ---- controls ----
+// ---- languages ----
+
+/** Loads the instruments' texts of `lang` from a panel's engine. */
+async function labTexts(lang) {
+  const reply = await panels[0].ask({ type: 'texts', lang });
+  return reply.texts;
+}
+
+/** Shows the page in `lang`: every string, every control, every instrument. */
+async function useLanguage(lang) {
+  await setLanguage(lang, labTexts);
+  translateDocument();
+  $('#language').value = lang;
+  for (const p of panels) {
+    p.canvas.setAttribute('aria-label', t('panel.canvas', { method: t(`panel.${p.method}`) }));
+    p.relabel();
+  }
+  exactPanel.canvas.setAttribute('aria-label', lab('method.exact'));
+  if (form) {
+    form = buildForm($('#controls'), page);
+    side.build();
+    scheduleInstruments();
+  }
+}
+
+function buildLanguageSwitch() {
+  const select = $('#language');
+  select.replaceChildren(...LANGUAGES.map((code) => {
+    const option = document.createElement('option');
+    option.value = code;
+    option.lang = code;
+    option.textContent = LANGUAGE_NAMES[code];
+    return option;
+  }));
+  select.addEventListener('change', async () => {
+    view.lang = select.value;
+    await useLanguage(view.lang);
+    writeLink();
+  });
+}
+
+// ---- what the form and the instruments see of the page ----
+
+const page = {
+  state: () => state,
+  get view() { return view; },
+  get panels() { return panels; },
+  get exactPanel() { return exactPanel; },
+  get generation() { return generation; },
+  get errorBar() { return errorBar; },
+  models: () => models,
+  modelInfo,
+  userFile: () => userFile,
+  dragMode: () => dragMode,
+  setDragMode: (v) => (dragMode = v),
+  changed: () => changed(),
+  rerender,
+  openFile,
+  resetCamera,
+  setStatus,
+  summaryText,
+  sceneFor: (method) => sceneToml(state, method),
+  setTab,
+  inspectPixel,
+  errorsShown,
+};
 
 function resetCamera() {
   state.camera = { ...defaultState().camera };
   changed();
 }
 
-function buildControls() {
-  const c = new Controls($('#controls'), changed);
-  const options = (prefix, values) => values.map((v) => [v, t(`${prefix}.${v}`)]);
-
-  const model = c.group('group.model', 'model');
-  c.select(model, {
-    name: 'model',
-    label: t('model.source'),
-    options: () => [
-      ...models.map((m) => [m.name, m.name]),
-      ...(userFile ? [[userFile.name, userFile.name]] : []),
-    ],
-    get: () => state.model,
-    set: (v) => {
-      state.model = v;
-      state.detail = null;
-      state.crease = null;
-      if (state.normals === 'file' && !(userFile && v === userFile.name && userFile.has_normals)) state.normals = 'auto';
-      setStatus(userFile && v === userFile.name ? summaryText(userFile) : '');
-    },
-  });
-  c.range(model, {
-    name: 'detail',
-    label: t('model.detail'),
-    min: () => modelInfo()?.detail_min ?? 0,
-    max: () => modelInfo()?.detail_max ?? 1,
-    step: 1,
-    get: () => state.detail ?? modelInfo()?.default_detail ?? 0,
-    set: (v) => (state.detail = Math.round(v)),
-    hint: () => (modelInfo() ? t('model.detail.hint', { meaning: modelInfo().detail_meaning }) : ''),
-    visible: () => modelInfo() !== null,
-  });
-  c.note(model, () => modelInfo()?.description ?? '');
-  c.file(model, {
-    name: 'file',
-    label: t('model.file'),
-    accept: MESH_EXTENSIONS.map((e) => `.${e}`).join(','),
-    hint: t('model.file.hint', { limit: MAX_FILE_MIB }),
-    onfile: openFile,
-  });
-
-  const ambient = c.group('group.ambient', 'ambient');
-  c.rgb(ambient, { name: 'ambient-color', label: t('ambient.color'), get: () => state.ambient.color, set: (v) => (state.ambient.color = v) });
-  c.range(ambient, { name: 'ambient-intensity', label: t('ambient.intensity'), min: 0, max: 2, step: 0.01, get: () => state.ambient.intensity, set: (v) => (state.ambient.intensity = v) });
-
-  const light = c.group('group.light', 'light');
-  c.rgb(light, { name: 'light-color', label: t('light.color'), get: () => state.light.color, set: (v) => (state.light.color = v) });
-  c.range(light, { name: 'light-intensity', label: t('light.intensity'), min: 0, max: 3, step: 0.01, get: () => state.light.intensity, set: (v) => (state.light.intensity = v) });
-  for (const [axis, i] of [['x', 0], ['y', 1], ['z', 2]]) {
-    c.range(light, {
-      name: `light-${axis}`, label: t(`light.${axis}`), min: -10, max: 10, step: 0.05,
-      get: () => state.light.position[i],
-      set: (v) => { const p = [...state.light.position]; p[i] = v; state.light.position = p; },
-    });
-  }
-  c.button(light, { label: t('light.reset'), onclick: () => { state.light.position = [...DEFAULT_LIGHT_POSITION]; changed(); } });
-
-  const material = c.group('group.material', 'material');
-  c.select(material, {
-    name: 'preset',
-    label: t('material.preset'),
-    options: () => [['custom', t('material.preset.custom'), true], ...Object.keys(PRESETS).map((p) => [p, t(`material.preset.${p}`)])],
-    get: () => presetOf(state.material),
-    set: (v) => { if (PRESETS[v]) state.material = structuredClone(PRESETS[v]); },
-  });
-  for (const k of ['ka', 'kd', 'ks']) {
-    c.rgb(material, { name: k, label: t(`material.${k}`), get: () => state.material[k], set: (v) => (state.material[k] = v) });
-  }
-  c.range(material, { name: 'shininess', label: t('material.shininess'), min: 0, max: 256, step: 1, get: () => state.material.shininess, set: (v) => (state.material.shininess = v) });
-
-  const camera = c.group('group.camera', 'camera');
-  c.range(camera, { name: 'yaw', label: t('camera.yaw'), min: -180, max: 180, step: 1, get: () => ((((state.camera.yaw + 180) % 360) + 360) % 360) - 180, set: (v) => (state.camera.yaw = v) });
-  c.range(camera, { name: 'pitch', label: t('camera.pitch'), min: -89, max: 89, step: 1, get: () => state.camera.pitch, set: (v) => (state.camera.pitch = v) });
-  c.range(camera, { name: 'zoom', label: t('camera.zoom'), min: ZOOM_MIN, max: ZOOM_MAX, step: 0.01, get: () => state.camera.zoom, set: (v) => (state.camera.zoom = v) });
-  c.select(camera, {
-    name: 'drag', label: t('camera.drag'), options: () => options('camera.drag', ['camera', 'light']),
-    get: () => dragMode, set: (v) => (dragMode = v),
-  });
-  c.button(camera, { label: t('camera.reset'), onclick: resetCamera });
-  c.note(camera, () => t('camera.help'));
-
-  const shading = c.group('group.shading', 'shading');
-  c.select(shading, {
-    name: 'normals', label: t('shading.normals'),
-    options: () => options('shading.normals', ['auto', 'file', 'uniform', 'area', 'angle']).map(([v, l]) => [v, l, v === 'file' && !(userFile && state.model === userFile.name && userFile.has_normals)]),
-    get: () => state.normals, set: (v) => (state.normals = v),
-  });
-  c.range(shading, {
-    name: 'crease', label: t('shading.crease'), min: 0, max: 180, step: 1,
-    get: () => state.crease ?? modelInfo()?.default_crease ?? 180, set: (v) => (state.crease = v),
-    hint: () => t('shading.crease.hint'),
-  });
-  c.checkbox(shading, { name: 'gouraud-specular', label: t('shading.gouraudSpecular'), get: () => state.gouraudSpecular, set: (v) => (state.gouraudSpecular = v) });
-  c.select(shading, { name: 'interpolation', label: t('shading.interpolation'), options: () => options('shading.interpolation', ['perspective', 'screen']), get: () => state.interpolation, set: (v) => (state.interpolation = v) });
-  c.checkbox(shading, { name: 'cull', label: t('shading.cull'), get: () => state.cull, set: (v) => (state.cull = v) });
-  c.select(shading, { name: 'specular', label: t('shading.specular'), options: () => options('shading.specular', ['phong', 'blinn-phong']), get: () => state.specular, set: (v) => (state.specular = v) });
-  c.select(shading, { name: 'polygons', label: t('shading.polygons'), options: () => options('shading.polygons', ['fans', 'whole']), get: () => state.polygons, set: (v) => (state.polygons = v) });
-  c.select(shading, {
-    name: 'rasterizer', label: t('shading.rasterizer'),
-    options: () => options('shading.rasterizer', ['tiled', 'scanline']).map(([v, l]) => [v, l, v === 'tiled' && state.polygons === 'whole']),
-    get: () => state.rasterizer, set: (v) => (state.rasterizer = v),
-  });
-
-  const view = c.group('group.view', 'view');
-  c.select(view, {
-    name: 'size', label: t('view.size'),
-    options: () => [...new Set([...PANEL_SIZES, state.size])].sort((a, b) => a - b).map((s) => [String(s), `${s} × ${s}`]),
-    get: () => String(state.size), set: (v) => (state.size = Number(v)),
-  });
-  c.rgb(view, { name: 'background', label: t('view.background'), get: () => state.background, set: (v) => (state.background = v) });
-  return c;
-}
-
 // ---- start ----
 
 function applyLink() {
-  const { state: linked, invalid } = fromHash(location.hash);
+  const { state: linked, view: linkedView, invalid } = fromHash(location.hash);
   const messages = invalid.map((key) => t('error.linkValue', { key }));
   const isBuiltin = models.some((m) => m.name === linked.model);
   if (!isBuiltin && !(userFile && linked.model === userFile.name)) {
@@ -281,7 +349,8 @@ function applyLink() {
     linked.crease = null;
   }
   state = linked;
-  if (messages.length) showMessage(messages.join('\n'), 'info');
+  view = linkedView;
+  return messages;
 }
 
 async function start() {
@@ -301,11 +370,11 @@ async function start() {
   panels = METHODS.map((method) => {
     const figure = figures.find((f) => f.dataset.method === method);
     const panel = new Panel(method, figure, module);
-    panel.canvas.setAttribute('aria-label', t('panel.canvas', { method: t(`panel.${method}`) }));
     panel.onerror = panelError;
     panel.onframe = panelFrame;
     return panel;
   });
+  exactPanel = new ImagePanel('exact', figures.find((f) => f.dataset.method === 'exact'));
   try {
     const answers = await Promise.all(panels.map((p) => p.ready));
     models = answers[0].models;
@@ -313,10 +382,16 @@ async function start() {
     showMessage(t('error.noWasm', { message: error.message }));
     return;
   }
+  const messages = applyLink();
+  buildLanguageSwitch();
+  await useLanguage(view.lang ?? negotiate(navigator.languages ?? [navigator.language]));
+  // The link's complaints, in the page's language.
+  if (messages.length) showMessage(applyLink().join('\n'), 'info');
   setStatus('');
-  applyLink();
-  controls = buildControls();
-  attachInteraction(panels.map((p) => p.canvas), state, changed, () => dragMode, resetCamera);
+  form = buildForm($('#controls'), page);
+  side = new Side($('#side'), page);
+  side.build();
+  attachInteraction([...panels, exactPanel].map((p) => p.canvas), state, changed, () => dragMode, resetCamera, picks);
   attachDrop($('#panels'));
   $('#message .message-close').addEventListener('click', clearMessage);
   $('#controls').addEventListener('submit', (e) => e.preventDefault());
@@ -342,12 +417,16 @@ async function start() {
     const on = document.body.classList.toggle('presenting');
     e.currentTarget.setAttribute('aria-pressed', String(on));
   });
-  window.addEventListener('hashchange', () => {
-    if (location.hash === toHash(state)) return;
+  window.addEventListener('hashchange', async () => {
+    if (location.hash === toHash(state, view)) return;
     const keep = state;
-    applyLink();
+    const keepLang = view.lang;
+    const problems = applyLink();
+    if (problems.length) showMessage(problems.join('\n'), 'info');
     // The controls and the pointer handlers hold the state object: update it in place.
     state = Object.assign(keep, state);
+    if (view.lang !== keepLang) await useLanguage(view.lang ?? negotiate(navigator.languages ?? []));
+    side.show();
     changed();
   });
   // `state` is replaced by applyLink only before the controls exist; from
@@ -360,15 +439,31 @@ async function start() {
 function exposeForTests() {
   window.shadelab = {
     get state() { return state; },
+    get view() { return view; },
+    get language() { return language(); },
     panels,
+    get exactPanel() { return exactPanel; },
     sceneToml: (method) => sceneToml(state, method),
     update(patch) {
       patch(state);
       changed();
     },
     idle: () => Promise.all(panels.map((p) => p.idle())),
+    /** Resolves once the panels are still and the open instrument has caught up. */
+    async instrumentsIdle() {
+      for (;;) {
+        await Promise.all(panels.map((p) => p.idle()));
+        await new Promise((r) => setTimeout(r, 120));
+        if (!instrumentsBusy && panels.every((p) => !p.busy && p.pending === null)) return;
+      }
+    },
+    get inspection() { return side.tools.inspector.answer; },
+    get profile() { return side.tools.profile.data; },
+    get quad() { return side.tools.quad.data; },
     frameTimes: () => Object.fromEntries(panels.map((p) => [p.method, [...p.times]])),
+    setTab,
     openFile,
+    paint,
   };
 }
 

@@ -1,11 +1,39 @@
 // The three panels: each a canvas drawn by its own worker. A panel renders
-// the newest scene it was given: while a frame is being drawn, later scenes
-// replace each other and only the last is drawn next, so dragging never
-// queues up stale frames.
-import { t, formatCount } from './i18n.js';
+// the newest frame it was asked for: while a frame is being drawn, later
+// requests replace each other and only the last is drawn next, so dragging
+// never queues up stale frames. Instruments ask the same worker with `ask`,
+// between frames.
+import { t, formatCount, formatNumber } from './i18n.js';
+import { Marks } from './marks.js';
 
 /** How many recent frame times each panel keeps (for the page and its tests). */
 const HISTORY = 240;
+
+/** Draws RGBA `pixels` of `width` × `height` into `canvas`. */
+export function paint(canvas, context, { width, height, pixels }) {
+  if (canvas.width !== width || canvas.height !== height) {
+    canvas.width = width;
+    canvas.height = height;
+  }
+  context.putImageData(new ImageData(pixels, width, height), 0, 0);
+}
+
+/** A figure with a canvas that is painted from images (the exact surface's panel). */
+export class ImagePanel {
+  constructor(method, figure) {
+    this.method = method;
+    this.figure = figure;
+    this.canvas = figure.querySelector('canvas');
+    this.context = this.canvas.getContext('2d', { willReadFrequently: true });
+    this.statsEl = figure.querySelector('.stats');
+    this.marks = new Marks(this.canvas);
+  }
+
+  show(image) {
+    paint(this.canvas, this.context, image);
+    this.marks.draw();
+  }
+}
 
 export class Panel {
   constructor(method, figure, module) {
@@ -15,7 +43,9 @@ export class Panel {
     // Frames arrive as pixels, and instruments read pixels back: keep the canvas in memory.
     this.context = this.canvas.getContext('2d', { willReadFrequently: true });
     this.timeEl = figure.querySelector('.time');
+    this.rasterEl = figure.querySelector('.raster');
     this.statsEl = figure.querySelector('.stats');
+    this.marks = new Marks(this.canvas);
     this.worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
     this.nextId = 1;
     this.waiting = new Map();
@@ -23,14 +53,16 @@ export class Panel {
     this.pending = null;
     this.times = [];
     this.frames = 0;
-    this.lastStats = null;
+    /** The last frame drawn: its request's generation, size, counts, error map. */
+    this.last = null;
     this.onframe = () => {};
     this.onerror = () => {};
     this.worker.onmessage = (event) => this.#receive(event.data);
-    this.ready = this.#request({ type: 'init', module });
+    this.ready = this.ask({ type: 'init', module });
   }
 
-  #request(msg, transfer = []) {
+  /** Sends one request to this panel's worker; resolves to its answer. */
+  ask(msg, transfer = []) {
     const id = this.nextId++;
     return new Promise((resolve, reject) => {
       this.waiting.set(id, { resolve, reject });
@@ -53,13 +85,16 @@ export class Panel {
 
   /** Loads the user's file into this panel's engine; resolves to its summary. */
   async loadFile(name, bytes) {
-    const answer = await this.#request({ type: 'load-file', name, bytes });
+    const answer = await this.ask({ type: 'load-file', name, bytes });
     return answer.summary;
   }
 
-  /** Asks for a frame of `scene` (TOML); the newest request wins. */
-  render(scene) {
-    this.pending = scene;
+  /**
+   * Asks for a frame: `{scene, overlays, errors, generation}` (see worker.js);
+   * the newest request wins.
+   */
+  render(request) {
+    this.pending = request;
     if (!this.busy) this.#next();
   }
 
@@ -73,12 +108,15 @@ export class Panel {
   }
 
   async #next() {
-    const scene = this.pending;
+    const request = this.pending;
     this.pending = null;
     this.busy = true;
     this.figure.classList.add('busy');
     try {
-      const frame = await this.#request({ type: 'render', scene });
+      const { generation, ...msg } = request;
+      const frame = await this.ask({ type: 'render', ...msg });
+      frame.generation = generation;
+      frame.overlays = msg.overlays;
       this.#draw(frame);
       this.onframe(this, frame);
     } catch (error) {
@@ -90,19 +128,45 @@ export class Panel {
     }
   }
 
+  /** Colours the last error map on `scale` (the three panels share one scale). */
+  async recolour(scale) {
+    if (!this.last?.errors || this.last.errors.scale === scale) return;
+    const answer = await this.ask({ type: 'heat', scale, overlays: this.last.overlays ?? '' });
+    paint(this.canvas, this.context, { width: this.last.width, height: this.last.height, pixels: answer.pixels });
+    this.last.errors.scale = answer.scale;
+    this.marks.draw();
+  }
+
   #draw(frame) {
-    if (this.canvas.width !== frame.width || this.canvas.height !== frame.height) {
-      this.canvas.width = frame.width;
-      this.canvas.height = frame.height;
-    }
-    this.context.putImageData(new ImageData(frame.pixels, frame.width, frame.height), 0, 0);
+    paint(this.canvas, this.context, frame);
+    this.marks.draw();
     this.frames += 1;
     this.times.push(frame.ms);
     if (this.times.length > HISTORY) this.times.shift();
-    this.lastStats = frame.stats;
-    this.timeEl.textContent = t('panel.time', { ms: frame.ms.toFixed(1) });
-    const s = frame.stats;
-    this.statsEl.textContent = t('panel.stats', {
+    const { pixels, exact, bar, ...kept } = frame;
+    this.last = kept;
+    this.relabel();
+  }
+
+  /** Writes the caption and the counts under the panel in the current language. */
+  relabel() {
+    const f = this.last;
+    if (!f) return;
+    this.timeEl.textContent = t('panel.time', { ms: formatNumber(f.ms, 1) });
+    this.rasterEl.textContent = t(`panel.raster.${f.rasterizer}`);
+    this.rasterEl.dataset.rasterizer = f.rasterizer;
+    this.rasterEl.title = t(`panel.raster.${f.rasterizer}.title`);
+    if (f.errors) {
+      const e = f.errors;
+      this.statsEl.textContent = t('panel.errors', {
+        mean: formatNumber(e.mean, 2),
+        max: formatNumber(e.max, 1),
+        compared: formatCount(e.compared),
+      });
+      return;
+    }
+    const s = f.stats;
+    this.statsEl.textContent = t(`panel.stats.${this.method}`, {
       evaluations: formatCount(s.lighting_evaluations),
       polygons: formatCount(s.rasterized),
       pixels: formatCount(s.fragments_shaded),

@@ -36,17 +36,81 @@ export class Shadelab {
   }
 
   /**
-   * Renders a scene given as TOML text. Returns {width, height, stats,
-   * pixels}, `pixels` a Uint8ClampedArray copy of the RGBA frame.
+   * Renders a scene given as TOML text. Returns {width, height, rasterizer,
+   * stats, cost, pixels}, `pixels` a Uint8ClampedArray copy of the RGBA frame.
    */
   render(sceneToml) {
     const text = encoder.encode(sceneToml);
     this.#input(text.length, (view) => view.set(text));
     const info = this.#call(this.x.shadelab_render());
-    const start = this.x.shadelab_pixels();
-    const length = this.x.shadelab_pixels_len();
-    info.pixels = new Uint8ClampedArray(this.x.memory.buffer.slice(start, start + length));
+    info.pixels = this.pixels();
     return info;
+  }
+
+  /** A copy of the last frame's RGBA pixels (as drawn, overlays included). */
+  pixels() {
+    const start = this.x.shadelab_pixels();
+    return new Uint8ClampedArray(this.x.memory.buffer.slice(start, start + this.x.shadelab_pixels_len()));
+  }
+
+  /** Draws overlays ('wireframe,light', …) over the last frame; returns its pixels. */
+  overlays(list) {
+    this.#json('overlays', { overlays: list });
+    return this.pixels();
+  }
+
+  /** The last frame's error map: {mean, max, max_at, …, scale, images: {heat, exact?, bar?}}. */
+  errors(request) {
+    return this.#json('errors', request);
+  }
+
+  /** The last error map on another scale: {scale, images: {heat}}. */
+  heat(request) {
+    return this.#json('heat', request);
+  }
+
+  /** The pixel inspector: {x, y, header, methods: [{method, text, color, …}]}. */
+  inspect(request) {
+    return this.#json('inspect', request);
+  }
+
+  /** A scanline profile: {pixels, curves: [{kind, values, derivative, edges, polygon_edges}]}. */
+  profile(request) {
+    return this.#json('profile', request);
+  }
+
+  /** The quad study: {angle, whole_centre, fans_centre, curve, images: {whole, fans}}. */
+  quad(request) {
+    return this.#json('quad', request);
+  }
+
+  /** The instruments' texts in one language: {id: text}. */
+  texts(lang) {
+    return this.#json('texts', { lang });
+  }
+
+  /**
+   * Sends `request` as JSON to export `shadelab_<name>`; an answer listing
+   * `images` gets them as {name: {width, height, pixels}} instead.
+   */
+  #json(name, request) {
+    const text = encoder.encode(JSON.stringify(request));
+    this.#input(text.length, (view) => view.set(text));
+    const answer = this.#call(this.x[`shadelab_${name}`]());
+    if (answer && Array.isArray(answer.images)) {
+      const images = {};
+      answer.images.forEach((info, k) => {
+        const start = this.x.shadelab_image(k);
+        const length = this.x.shadelab_image_len(k);
+        images[info.name] = {
+          width: info.width,
+          height: info.height,
+          pixels: new Uint8ClampedArray(this.x.memory.buffer.slice(start, start + length)),
+        };
+      });
+      answer.images = images;
+    }
+    return answer;
   }
 
   #input(length, fill) {

@@ -4,6 +4,15 @@
 // `shadelab render` / `shadelab compare` read.
 
 export const METHODS = ['flat', 'gouraud', 'phong'];
+export const LANGUAGES = ['en', 'ru', 'sk', 'cs'];
+/** The overlays, named as `shadelab render --overlay` names them. */
+export const OVERLAYS = ['wireframe', 'face-normals', 'vertex-normals', 'light'];
+/** The built-in models whose exact surface is known (shadelab-lab: EXACT_MODELS). */
+export const EXACT_MODELS = ['sphere', 'torus', 'cylinder', 'cone'];
+export const TABS = ['about', 'inspector', 'profile', 'errors', 'overlays', 'quad', 'cost'];
+/** Fixed-point fraction bits and palette sizes the renderer accepts. */
+export const FIXED_POINT_BITS = [1, 30];
+export const PALETTE_SHADES = [2, 256];
 export const PANEL_SIZES = [240, 320, 400, 480, 560, 640, 800];
 export const ZOOM_MIN = 0.25;
 export const ZOOM_MAX = 8;
@@ -36,12 +45,43 @@ export function defaultState() {
     rasterizer: 'tiled',
     size: 480,
     background: [0, 0, 0],
+    fixedPoint: null, // fraction bits, or null: floating point
+    palette: null, // {shades, offset}, or null: true colour
+    // The instruments.
+    pixel: null, // [x, y] under the inspector
+    profile: null, // {row} or {line: [x0, y0, x1, y1]}
+    errors: false, // the panels show their error against the exact surface
+    errorScale: null, // the error shown brightest; null: a round number above the largest
+    overlays: { flat: [], gouraud: [], phong: [] },
+    quadAngle: 30,
   };
+}
+
+/** What the page remembers apart from the scene: kept by Reset all. */
+export function defaultView() {
+  return { lang: null, tab: 'about' };
+}
+
+/** Whether the scene needs the scanline rasterizer (whole polygons, fixed point, palette). */
+export function needsScanline(state) {
+  return state.polygons === 'whole' || state.fixedPoint !== null || state.palette !== null;
+}
+
+/** The rasterizer that draws: the one chosen, unless a mode needs the scanline one. */
+export function rasterizerOf(state) {
+  return needsScanline(state) ? 'scanline' : state.rasterizer;
+}
+
+/** Whether the model has an exact surface to compare with. */
+export function hasExactSurface(state) {
+  return EXACT_MODELS.includes(state.model);
 }
 
 export const DEFAULT_LIGHT_POSITION = [2, 2, 3];
 
 const CHOICES = {
+  lang: LANGUAGES,
+  tab: TABS,
   normals: ['auto', 'file', 'uniform', 'area', 'angle'],
   interpolation: ['perspective', 'screen'],
   specular: ['phong', 'blinn-phong'],
@@ -117,9 +157,15 @@ export function sceneToml(state, method) {
     `cull_backfaces = ${state.cull}`,
     `gouraud_specular = ${state.gouraudSpecular}`,
     `interpolation = "${state.interpolation}"`,
-    `rasterizer = "${state.rasterizer}"`,
+    `rasterizer = "${rasterizerOf(state)}"`,
     `polygons = "${state.polygons}"`,
     `specular = "${state.specular}"`,
+  );
+  if (state.fixedPoint !== null) lines.push(`fixed_point_bits = ${Math.round(state.fixedPoint)}`);
+  if (state.palette !== null) {
+    lines.push(`palette_shades = ${Math.round(state.palette.shades)}`, `palette_offset = ${Math.round(state.palette.offset)}`);
+  }
+  lines.push(
     `yaw = ${float(state.camera.yaw)}`,
     `pitch = ${float(state.camera.pitch)}`,
     `zoom = ${float(state.camera.zoom)}`,
@@ -132,8 +178,8 @@ export function sceneToml(state, method) {
 
 const round = (x, digits = 3) => Number(x.toFixed(digits));
 
-/** The state's differences from the defaults, as URL parameters (after `#`). */
-export function toHash(state) {
+/** The state's (and the view's) differences from the defaults, as URL parameters (after `#`). */
+export function toHash(state, view = defaultView()) {
   const d = defaultState();
   const p = new URLSearchParams();
   const put = (key, value, def) => {
@@ -163,17 +209,35 @@ export function toHash(state) {
   put('rasterizer', state.rasterizer, d.rasterizer);
   put('size', state.size, d.size);
   put('background', state.background, d.background);
+  put('fixedPoint', state.fixedPoint, d.fixedPoint);
+  if (state.palette !== null) {
+    p.set('palette', String(state.palette.shades));
+    if (state.palette.offset) p.set('paletteOffset', String(state.palette.offset));
+  }
+  put('pixel', state.pixel, d.pixel);
+  if (state.profile?.line) p.set('line', state.profile.line.map((v) => round(v, 1)).join(','));
+  else if (state.profile) p.set('row', String(state.profile.row));
+  put('errors', state.errors, d.errors);
+  put('errorScale', state.errorScale, d.errorScale);
+  for (const m of METHODS) {
+    if (state.overlays[m].length) p.set(`overlays.${m}`, state.overlays[m].join(','));
+  }
+  put('quadAngle', round(state.quadAngle, 1), d.quadAngle);
+  const dv = defaultView();
+  put('lang', view.lang, dv.lang);
+  put('tab', view.tab, dv.tab);
   const s = p.toString();
   return s ? `#${s}` : '';
 }
 
 /**
- * The state a link describes, and the keys whose values were invalid (left
- * at their defaults). `isModel(name)` tells whether a name is a built-in
- * model; any other model name is a user's file, which the link cannot carry.
+ * The state and view a link describes, and the keys whose values were
+ * invalid (left at their defaults). A model name that is not built in is a
+ * user's file, which the link names but cannot carry.
  */
 export function fromHash(hash) {
   const state = defaultState();
+  const view = defaultView();
   const invalid = [];
   const p = new URLSearchParams(hash.replace(/^#/, ''));
   const num = (key, min, max, apply) => {
@@ -223,6 +287,42 @@ export function fromHash(hash) {
   choice('rasterizer', (v) => (state.rasterizer = v));
   num('size', 16, 2048, (v) => (state.size = Math.round(v)));
   color('background', (v) => (state.background = v));
-  if (state.polygons === 'whole') state.rasterizer = 'scanline';
-  return { state, invalid };
+  const integers = (key, count, min, max) => {
+    if (!p.has(key)) return null;
+    const v = p.get(key).split(',').map(Number);
+    if (v.length === count && v.every((x) => Number.isInteger(x) && x >= min && x <= max)) return v;
+    invalid.push(key);
+    return null;
+  };
+  num('fixedPoint', FIXED_POINT_BITS[0], FIXED_POINT_BITS[1], (v) => (state.fixedPoint = Math.round(v)));
+  num('palette', PALETTE_SHADES[0], PALETTE_SHADES[1], (v) => (state.palette = { shades: Math.round(v), offset: 0 }));
+  num('paletteOffset', 0, 254, (v) => {
+    if (state.palette && state.palette.shades + Math.round(v) <= 256) state.palette.offset = Math.round(v);
+    else invalid.push('paletteOffset');
+  });
+  const pixel = integers('pixel', 2, 0, 2047);
+  if (pixel) state.pixel = pixel;
+  const row = integers('row', 1, 0, 2047);
+  if (row) state.profile = { row: row[0] };
+  if (p.has('line')) {
+    const v = p.get('line').split(',').map(Number);
+    if (v.length === 4 && v.every((x) => Number.isFinite(x) && Math.abs(x) <= 1e4)) state.profile = { line: v };
+    else invalid.push('line');
+  }
+  choice('errors', (v) => (state.errors = v === 'true'));
+  num('errorScale', 0.01, 1000, (v) => (state.errorScale = v));
+  for (const m of METHODS) {
+    const key = `overlays.${m}`;
+    if (!p.has(key)) continue;
+    const names = p.get(key).split(',').filter(Boolean);
+    if (names.every((n) => OVERLAYS.includes(n))) state.overlays[m] = OVERLAYS.filter((n) => names.includes(n));
+    else invalid.push(key);
+  }
+  num('quadAngle', -360, 360, (v) => (state.quadAngle = v));
+  choice('lang', (v) => (view.lang = v));
+  choice('tab', (v) => (view.tab = v));
+  // A pixel or row outside the panels is dropped.
+  if (state.pixel && state.pixel.some((v) => v >= state.size)) state.pixel = null;
+  if (state.profile?.row !== undefined && state.profile.row >= state.size) state.profile = null;
+  return { state, view, invalid };
 }

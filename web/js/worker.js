@@ -2,13 +2,25 @@
 // WebAssembly. The page posts one message per request and gets one answer
 // per request, matched by `id`:
 //
-//   {type: 'init', module}              -> {type: 'ready', models}
+//   {type: 'init', module}               -> {type: 'ready', models}
 //   {type: 'load-file', id, name, bytes} -> {type: 'file-loaded', id, summary}
-//   {type: 'render', id, scene}          -> {type: 'frame', id, width, height, pixels, stats, ms}
+//   {type: 'render', id, scene, overlays, errors}
+//                                        -> {type: 'frame', id, width, height, rasterizer, stats, cost, pixels, ms,
+//                                            errors?, exact?, bar?}
+//   {type: 'heat', id, scale, overlays}  -> {type: 'heat', id, scale, pixels}
+//   {type: 'inspect', id, scene, x, y, lang}  -> {type: 'inspection', id, inspection}
+//   {type: 'profile', id, scene, row | line}  -> {type: 'profile', id, profile}
+//   {type: 'quad', id, angle, size, curve}    -> {type: 'quad', id, quad, whole, fans}
+//   {type: 'texts', id, lang}            -> {type: 'texts', id, texts}
+//   {type: 'cost', id, scene, runs, warmup} -> {type: 'cost', id, times, stats, cost}
 //   any request that fails               -> {type: 'error', id, request, message, crashed}
 //
-// `ms` is the time the engine took, measured here around the call. A new
-// request type is a new case below and a new export in crates/shadelab-wasm.
+// A frame is the scene drawn, then, when asked, its overlays (`overlays`, a
+// comma-separated list) or its error map against the exact surface
+// (`errors: {scale, exact, bar}`: `pixels` is then the heat map, `exact` the
+// exact surface's image). `ms` is the time the engine took to render, measured
+// here around that call alone. A new request type is a new case below and a
+// new export in crates/shadelab-wasm.
 import { Shadelab, ShadelabError } from './shadelab.js';
 
 let module = null;
@@ -38,8 +50,61 @@ const handlers = {
     const start = performance.now();
     const frame = engine.render(msg.scene);
     const ms = performance.now() - start;
-    const { width, height, stats, pixels } = frame;
-    return [{ type: 'frame', width, height, stats, pixels, ms }, [pixels.buffer]];
+    const { width, height, rasterizer, stats, cost } = frame;
+    const reply = { type: 'frame', width, height, rasterizer, stats, cost, pixels: frame.pixels, ms };
+    if (msg.errors) {
+      const answer = engine.errors({ ...msg.errors, overlays: msg.overlays ?? '' });
+      const { heat, exact, bar } = answer.images;
+      delete answer.images;
+      Object.assign(reply, { errors: answer, pixels: heat.pixels, exact, bar });
+    } else if (msg.overlays) {
+      reply.pixels = engine.overlays(msg.overlays);
+    }
+    const transfer = [reply.pixels.buffer];
+    if (reply.exact) transfer.push(reply.exact.pixels.buffer);
+    if (reply.bar) transfer.push(reply.bar.pixels.buffer);
+    return [reply, transfer];
+  },
+
+  heat(msg) {
+    const answer = engine.heat({ scale: msg.scale, overlays: msg.overlays ?? '' });
+    const { pixels } = answer.images.heat;
+    return [{ type: 'heat', scale: answer.scale, pixels }, [pixels.buffer]];
+  },
+
+  inspect(msg) {
+    return { type: 'inspection', inspection: engine.inspect({ scene: msg.scene, x: msg.x, y: msg.y, lang: msg.lang }) };
+  },
+
+  profile(msg) {
+    const request = { scene: msg.scene };
+    if (msg.line) request.line = msg.line;
+    else request.row = msg.row;
+    return { type: 'profile', profile: engine.profile(request) };
+  },
+
+  quad(msg) {
+    const answer = engine.quad({ angle: msg.angle, size: msg.size, curve: msg.curve ?? [] });
+    const { whole, fans } = answer.images;
+    delete answer.images;
+    return [{ type: 'quad', quad: answer, whole, fans }, [whole.pixels.buffer, fans.pixels.buffer]];
+  },
+
+  texts(msg) {
+    return { type: 'texts', texts: engine.texts(msg.lang) };
+  },
+
+  cost(msg) {
+    // Each run timed alone, as a frame is: the median says what a frame costs.
+    const times = [];
+    let frame = null;
+    for (let k = 0; k < (msg.warmup ?? 0); k++) engine.render(msg.scene);
+    for (let k = 0; k < Math.max(1, msg.runs); k++) {
+      const start = performance.now();
+      frame = engine.render(msg.scene);
+      times.push(performance.now() - start);
+    }
+    return { type: 'cost', times, stats: frame.stats, cost: frame.cost, rasterizer: frame.rasterizer };
   },
 };
 

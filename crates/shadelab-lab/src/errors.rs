@@ -137,6 +137,20 @@ pub fn heat_bar(width: u32, height: u32) -> Image {
     bar
 }
 
+/// The scale a heat map of errors up to `largest` uses: the smallest of 1,
+/// 2, 2.5, 5 times a power of ten that is at least `largest` (1 for none).
+pub fn heat_scale(largest: f32) -> f32 {
+    if largest.is_nan() || largest <= 0.0 {
+        return 1.0;
+    }
+    let p = 10f32.powf(largest.log10().floor());
+    [1.0, 2.0, 2.5, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&c| c >= largest)
+        .unwrap_or(10.0 * p)
+}
+
 /// Which pixels of a render were drawn: those of `coverage` > 0.
 pub fn drawn_mask(scene: &Scene, options: &RenderOptions) -> Result<Vec<bool>, RenderError> {
     Ok(shadelab_core::coverage(scene, options)?
@@ -290,5 +304,23 @@ mod tests {
         assert_eq!(heat_color(-3.0), heat_color(0.0));
         assert_eq!(heat_color(9.0), heat_color(1.0));
         assert_eq!(heat_color(f32::NAN), heat_color(0.0));
+    }
+
+    #[test]
+    fn heat_scales_are_round_numbers_above_the_largest_error() {
+        for (largest, scale) in [
+            (0.0, 1.0),
+            (0.7, 1.0),
+            (1.0, 1.0),
+            (1.2, 2.0),
+            (2.2, 2.5),
+            (3.0, 5.0),
+            (7.0, 10.0),
+            (134.3, 200.0),
+            (157.3, 200.0),
+            (255.0, 500.0),
+        ] {
+            assert_eq!(heat_scale(largest), scale, "{largest}");
+        }
     }
 }

@@ -427,7 +427,21 @@ fn letter(k: usize) -> String {
 
 /// The inspection as text in `texts`' language: per method, the polygon,
 /// the scanline, P, Q, the parameters, the values and the colour.
+///
+/// It is [`inspection_header`] followed, for each method, by an empty line
+/// and [`method_inspection_text`].
 pub fn inspection_text(inspection: &Inspection, texts: &Texts) -> String {
+    let mut out = inspection_header(inspection, texts);
+    for m in &inspection.methods {
+        out.push('\n');
+        method_text(&mut out, m, inspection, texts);
+    }
+    out
+}
+
+/// The lines that hold for every method: the pixel, the interpolation, and
+/// whether the frame was drawn by the tiled rasterizer or in fixed point.
+pub fn inspection_header(inspection: &Inspection, texts: &Texts) -> String {
     let mut out = String::new();
     let (x, y) = (inspection.x.to_string(), inspection.y.to_string());
     let _ = writeln!(
@@ -451,10 +465,17 @@ pub fn inspection_text(inspection: &Inspection, texts: &Texts) -> String {
             texts.fill("inspect.fixed_point", &[("bits", &bits.to_string())])
         );
     }
-    for m in &inspection.methods {
-        out.push('\n');
-        method_text(&mut out, m, inspection, texts);
-    }
+    out
+}
+
+/// One method's account as text, its first line `== ` and the method's name.
+pub fn method_inspection_text(
+    method: &MethodView,
+    inspection: &Inspection,
+    texts: &Texts,
+) -> String {
+    let mut out = String::new();
+    method_text(&mut out, method, inspection, texts);
     out
 }
 

@@ -4,10 +4,10 @@
 //!
 //! | instrument | module | entry point |
 //! |---|---|---|
-//! | pixel inspector | `inspect` | [`inspect`], [`inspection_text`] |
+//! | pixel inspector | `inspect` | [`inspect`], [`inspection_text`] ([`inspection_header`], [`method_inspection_text`]) |
 //! | scanline profile (Mach bands) | `profile` | [`profile()`] |
 //! | exact surfaces | `exact` | [`Surface`], [`ExactImage`] |
-//! | error maps, accuracy | `errors` | [`error_maps`], [`accuracy`] |
+//! | error maps, accuracy | `errors` | [`error_maps`], [`heat_scale`], [`accuracy`] |
 //! | overlays | `overlay` | [`draw_overlays`] |
 //! | interpolation on polygons | `quad` | [`quad_study`] |
 //! | cost | `cost` | [`measure_cost`] |
@@ -20,7 +20,8 @@
 //! are plotted as they are; [`error_maps`] gives each panel's
 //! [`ErrorMap::heat_image`] with [`heat_bar`] as the scale; overlays are
 //! [`draw_overlays`] on a rendered image; [`measure_cost`] takes the page's
-//! clock; the texts are [`Texts::new`]`(`[`Lang::negotiate`]`(navigator
+//! clock; one panel's account of a pixel is [`method_inspection_text`] under
+//! the shared [`inspection_header`]; the texts are [`Texts::new`]`(`[`Lang::negotiate`]`(navigator
 //! languages))`. The exact surface of a built-in model is
 //! [`Surface::for_builtin`].
 //!
@@ -41,15 +42,15 @@ mod texts;
 
 pub use cost::{measure_cost, Cost};
 pub use errors::{
-    accuracy, drawn_mask, error_maps, exact_image, heat_bar, heat_color, image_diff, AccuracyRow,
-    ErrorMap, ImageDiff, MethodErrors, SILHOUETTE,
+    accuracy, drawn_mask, error_maps, exact_image, heat_bar, heat_color, heat_scale, image_diff,
+    AccuracyRow, ErrorMap, ImageDiff, MethodErrors, SILHOUETTE,
 };
 pub use exact::{
     exact_pixel, normalization, ExactImage, Rays, Shape, Surface, SurfaceHit, EXACT_MODELS,
 };
 pub use inspect::{
-    inspect, inspection_text, lerp_attributes, CornerView, EdgeView, Inspection, MethodView,
-    SpanView, WalkedVertex,
+    inspect, inspection_header, inspection_text, lerp_attributes, method_inspection_text,
+    CornerView, EdgeView, Inspection, MethodView, SpanView, WalkedVertex,
 };
 pub use overlay::{
     draw_overlays, Canvas, Overlays, Projector, WindowPoint, FACE_NORMAL, LIGHT, NORMAL_LENGTH,

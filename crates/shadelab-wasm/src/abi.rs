@@ -13,6 +13,7 @@
 
 use std::cell::RefCell;
 
+use serde::de::DeserializeOwned;
 use serde::Serialize;
 
 use crate::engine::{Engine, EngineError};
@@ -113,6 +114,80 @@ pub extern "C" fn shadelab_render() -> u32 {
         };
         i.answer(answer)
     })
+}
+
+/// Answers a request whose input buffer holds its JSON.
+fn json_request<Q: DeserializeOwned, A: Serialize>(
+    f: impl FnOnce(&mut Engine, &Q) -> Result<A, EngineError>,
+) -> u32 {
+    with(|i| {
+        let answer = match serde_json::from_slice::<Q>(&i.input) {
+            Ok(request) => f(&mut i.engine, &request),
+            Err(e) => Err(EngineError(format!("bad request: {e}"))),
+        };
+        i.answer(answer)
+    })
+}
+
+/// Draws overlays over the last frame ([`Engine::overlays`]); its pixels
+/// are then at [`shadelab_pixels`].
+#[no_mangle]
+pub extern "C" fn shadelab_overlays() -> u32 {
+    json_request(Engine::overlays)
+}
+
+/// The last frame's error against the exact surface ([`Engine::errors`]);
+/// the heat map (and the exact image) are then at [`shadelab_image`].
+#[no_mangle]
+pub extern "C" fn shadelab_errors() -> u32 {
+    json_request(Engine::errors)
+}
+
+/// The last error map on another scale ([`Engine::heat`]).
+#[no_mangle]
+pub extern "C" fn shadelab_heat() -> u32 {
+    json_request(Engine::heat)
+}
+
+/// The pixel inspector ([`Engine::inspect`]).
+#[no_mangle]
+pub extern "C" fn shadelab_inspect() -> u32 {
+    json_request(Engine::inspect)
+}
+
+/// A scanline profile ([`Engine::profile`]).
+#[no_mangle]
+pub extern "C" fn shadelab_profile() -> u32 {
+    json_request(Engine::profile)
+}
+
+/// The quad study ([`Engine::quad`]); its images are at [`shadelab_image`].
+#[no_mangle]
+pub extern "C" fn shadelab_quad() -> u32 {
+    json_request(Engine::quad)
+}
+
+/// The instruments' texts in one language ([`Engine::texts`]).
+#[no_mangle]
+pub extern "C" fn shadelab_texts() -> u32 {
+    json_request(|_, request| Engine::texts(request))
+}
+
+/// Address of image `k` of the last instrument request (RGBA; null past the last).
+#[no_mangle]
+pub extern "C" fn shadelab_image(k: usize) -> *const u8 {
+    with(|i| {
+        i.engine
+            .images()
+            .get(k)
+            .map_or(std::ptr::null(), |v| v.as_ptr())
+    })
+}
+
+/// Length of image `k` of the last instrument request, bytes (0 past the last).
+#[no_mangle]
+pub extern "C" fn shadelab_image_len(k: usize) -> usize {
+    with(|i| i.engine.images().get(k).map_or(0, Vec::len))
 }
 
 /// Address of the last request's result (JSON).

@@ -69,16 +69,33 @@ pub struct FileSummary {
     pub has_normals: bool,
 }
 
-/// What a frame was: its size and what it cost.
+/// What a frame was: its size, who drew it and what it cost.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct FrameInfo {
     /// Width in pixels.
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
+    /// The rasterizer that drew it: `"tiled"` or `"scanline"` (which the
+    /// scanline-only modes choose).
+    pub rasterizer: &'static str,
     /// The renderer's counts.
     #[serde(serialize_with = "serialize_stats")]
     pub stats: RenderStats,
+    /// The lighting evaluations split by where the method makes them.
+    pub cost: Evaluations,
+}
+
+/// Lighting evaluations by granularity: each method evaluates the model at
+/// one of them only ([`shadelab_lab::Cost`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Evaluations {
+    /// Once per polygon drawn (flat).
+    pub per_polygon: u64,
+    /// Once per distinct vertex (Gouraud).
+    pub per_vertex: u64,
+    /// Once per shaded pixel (Phong).
+    pub per_pixel: u64,
 }
 
 fn serialize_stats<S: serde::Serializer>(s: &RenderStats, out: S) -> Result<S::Ok, S::Error> {
@@ -125,17 +142,39 @@ struct UserFile {
 /// while the scene's `[model]` section (and whether it gives a camera) stays the same.
 #[derive(Debug, Default)]
 pub struct Engine {
-    renderer: Renderer,
+    pub(crate) renderer: Renderer,
     /// The user's file, and a count that changes with each file loaded.
     file: Option<UserFile>,
     file_generation: u64,
-    /// The scene of the last frame, with the key of its model: requests about
-    /// that frame (a pixel's lighting terms, say) can use it as drawn.
-    prepared: Option<(ModelKey, Scene)>,
-    /// The last frame, its options and its pixels as RGBA.
-    image: Option<Image>,
-    options: Option<RenderOptions>,
-    rgba: Vec<u8>,
+    /// The scene last asked for, with the key of its model and the text it
+    /// was read from.
+    pub(crate) prepared: Option<Prepared>,
+    /// The last frame: the text it was drawn from, its options, its pixels
+    /// (also as RGBA).
+    pub(crate) frame_toml: String,
+    pub(crate) image: Option<Image>,
+    pub(crate) options: Option<RenderOptions>,
+    pub(crate) rgba: Vec<u8>,
+    /// The instruments' state: the last error map, and the images of the
+    /// last instrument request.
+    pub(crate) errors: Option<crate::instruments::KeptErrors>,
+    pub(crate) images: Vec<Vec<u8>>,
+}
+
+/// A scene ready to draw, and what it was made from.
+#[derive(Debug)]
+pub(crate) struct Prepared {
+    key: ModelKey,
+    toml: String,
+    file: SceneFile,
+    options: RenderOptions,
+    pub(crate) scene: Scene,
+}
+
+/// A scene read from text, as [`Engine::load_scene`] leaves it.
+pub(crate) struct Loaded<'a> {
+    pub file: &'a SceneFile,
+    pub options: RenderOptions,
 }
 
 impl Engine {
@@ -203,6 +242,52 @@ impl Engine {
     /// The scene's error naming the key (as `shadelab render` reports it),
     /// or that `model.source` names a file that has not been loaded.
     pub fn render(&mut self, toml: &str) -> Result<FrameInfo, EngineError> {
+        let Loaded { options, .. } = self.load_scene(toml)?;
+        let scene = &self.prepared.as_ref().expect("load_scene keeps it").scene;
+        let image = self
+            .image
+            .get_or_insert_with(|| Image::filled(1, 1, Rgb8::default()));
+        let stats = self
+            .renderer
+            .render_into(scene, &options, image)
+            .map_err(|e| EngineError(e.to_string()))?;
+        rgba_of(image, &mut self.rgba);
+        self.options = Some(options);
+        self.frame_toml.clear();
+        self.frame_toml.push_str(toml);
+        self.errors = None;
+        let split = shadelab_lab::Cost::new(options.shading, stats, 0.0, 1);
+        Ok(FrameInfo {
+            width: options.width,
+            height: options.height,
+            rasterizer: options.rasterizer.name(),
+            stats,
+            cost: Evaluations {
+                per_polygon: split.per_polygon,
+                per_vertex: split.per_vertex,
+                per_pixel: split.per_pixel,
+            },
+        })
+    }
+
+    /// Reads the scene `toml`, preparing its model again only when its
+    /// `[model]` section (or the file it names) changed since the last
+    /// request, and keeps it for the requests that follow.
+    ///
+    /// # Errors
+    /// As [`Engine::render`].
+    pub(crate) fn load_scene(&mut self, toml: &str) -> Result<Loaded<'_>, EngineError> {
+        if self
+            .prepared
+            .as_ref()
+            .is_some_and(|p| p.toml == toml && p.key.file_generation == self.file_generation)
+        {
+            let p = self.prepared.as_ref().expect("just checked");
+            return Ok(Loaded {
+                file: &p.file,
+                options: p.options,
+            });
+        }
         let file = SceneFile::parse(toml, "scene")?;
         let options = file.render_options()?;
         let key = ModelKey {
@@ -211,31 +296,48 @@ impl Engine {
             file_generation: self.file_generation,
         };
         let mut scene = match self.prepared.take() {
-            Some((k, scene)) if k == key => scene,
+            Some(p) if p.key == key => p.scene,
             _ => self.prepare(&file, &options)?,
         };
         let result = file.update_scene(&mut scene, &options);
-        // Keep the model even when the rest of the scene is invalid.
-        let scene = &self.prepared.insert((key, scene)).1;
+        // Keep the model even when the rest of the scene is invalid; such a
+        // scene is never taken for a valid one (its text is not kept).
+        let valid = result.is_ok();
+        let p = self.prepared.insert(Prepared {
+            key,
+            toml: if valid {
+                toml.to_owned()
+            } else {
+                String::new()
+            },
+            file,
+            options,
+            scene,
+        });
         result?;
-        let image = self
-            .image
-            .get_or_insert_with(|| Image::filled(1, 1, Rgb8::default()));
-        let stats = self
-            .renderer
-            .render_into(scene, &options, image)
-            .map_err(|e| EngineError(e.to_string()))?;
-        self.rgba.clear();
-        self.rgba.reserve(image.pixels().len() * 4);
-        for p in image.pixels() {
-            let [r, g, b] = p.0;
-            self.rgba.extend_from_slice(&[r, g, b, 255]);
-        }
-        self.options = Some(options);
-        Ok(FrameInfo {
-            width: options.width,
-            height: options.height,
-            stats,
+        Ok(Loaded {
+            file: &p.file,
+            options: p.options,
+        })
+    }
+
+    /// The scene [`Engine::load_scene`] last read.
+    ///
+    /// # Panics
+    /// If none was read.
+    pub(crate) fn prepared_scene(&self) -> &Scene {
+        &self.prepared.as_ref().expect("a scene was loaded").scene
+    }
+
+    /// The scene [`Engine::load_scene`] last read, as it returned it.
+    ///
+    /// # Panics
+    /// If none was read.
+    pub(crate) fn load_scene_kept(&self) -> Result<Loaded<'_>, EngineError> {
+        let p = self.prepared.as_ref().expect("a scene was loaded");
+        Ok(Loaded {
+            file: &p.file,
+            options: p.options,
         })
     }
 
@@ -262,8 +364,24 @@ impl Engine {
         &self.rgba
     }
 
+    /// The images the last instrument request made, each RGBA (its JSON
+    /// answer says what each is and its size).
+    pub fn images(&self) -> &[Vec<u8>] {
+        &self.images
+    }
+
     /// The last frame as an image, for tests.
     pub fn image(&self) -> Option<&Image> {
         self.image.as_ref()
+    }
+}
+
+/// Writes `image` as RGBA with alpha 255 into `out`.
+pub(crate) fn rgba_of(image: &Image, out: &mut Vec<u8>) {
+    out.clear();
+    out.reserve(image.pixels().len() * 4);
+    for p in image.pixels() {
+        let [r, g, b] = p.0;
+        out.extend_from_slice(&[r, g, b, 255]);
     }
 }

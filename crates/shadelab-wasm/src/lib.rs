@@ -16,12 +16,30 @@
 //! |---|---|---|---|
 //! | `shadelab_models` | — | the built-in models | — |
 //! | `shadelab_load_file(name_len)` | file name, then the file's bytes | a summary of the mesh | — |
-//! | `shadelab_render` | scene TOML | size and [`shadelab_core::RenderStats`] | RGBA, row 0 at the top |
+//! | `shadelab_render` | scene TOML | size, rasterizer, [`shadelab_core::RenderStats`], [`Evaluations`] | RGBA, row 0 at the top |
+//! | `shadelab_overlays` | [`OverlaysRequest`] | `null` | the last frame with overlays |
+//! | `shadelab_errors` | [`ErrorsRequest`] | [`ErrorsAnswer`] | images: heat map (and exact surface) |
+//! | `shadelab_heat` | [`HeatRequest`] | [`HeatAnswer`] | images: heat map |
+//! | `shadelab_inspect` | [`InspectRequest`] | [`InspectAnswer`] | — |
+//! | `shadelab_profile` | [`ProfileRequest`] | [`ProfileAnswer`] | — |
+//! | `shadelab_quad` | [`QuadRequest`] | [`QuadAnswer`] | images: whole, fans |
+//! | `shadelab_texts` | [`TextsRequest`] | `{id: text}` | — |
 //!
+//! The instruments' requests are JSON (`shadelab_render` takes the scene's
+//! text as it is); their images are read with `shadelab_image(k)` and
+//! `shadelab_image_len(k)`, in the order the answer's `images` lists them.
 //! Each returns 0 on success or 1 with `{"error": "..."}` as its result.
 #![warn(missing_docs)]
 
 pub mod abi;
 mod engine;
+mod instruments;
 
-pub use engine::{Engine, EngineError, FileSummary, FrameInfo, ModelEntry, MAX_FILE_BYTES};
+pub use engine::{
+    Engine, EngineError, Evaluations, FileSummary, FrameInfo, ModelEntry, MAX_FILE_BYTES,
+};
+pub use instruments::{
+    CurveAnswer, ErrorsAnswer, ErrorsRequest, HeatAnswer, HeatRequest, ImageInfo, InspectAnswer,
+    InspectRequest, KeptErrors, MethodAnswer, OverlaysRequest, ProfileAnswer, ProfileRequest,
+    QuadAnswer, QuadRequest, TextsRequest, MAX_QUAD_SIZE,
+};
