@@ -109,6 +109,7 @@ fuzz_target!(|input: Input| {
         } else {
             Specular::Phong
         },
+        ..RenderOptions::default()
     };
     let scanline = coverage(&scene, &options(Rasterizer::Scanline));
     let tiled = coverage(&scene, &options(Rasterizer::Tiled));
