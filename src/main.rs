@@ -187,12 +187,16 @@ fn resolve(
     let (scene, options) = file.resolve(&base_dir).map_err(input_error)?;
     let mut inputs: Vec<PathBuf> = scene_path.map(Path::to_path_buf).into_iter().collect();
     if let Some(source) = &file.model.source {
-        inputs.push(model_path(source, &base_dir));
+        let model = model_path(source, &base_dir);
+        // Its material libraries and external buffers are the user's too.
+        inputs.extend(shadelab_io::companion_files(&model));
+        inputs.push(model);
     }
     Ok((scene, options, inputs))
 }
 
-/// Refuses to write the image over one of the command's own inputs.
+/// Refuses to write the image over one of the command's own inputs (the
+/// scene file, the model, and the files the model reads).
 fn check_output(output: &Path, inputs: &[PathBuf]) -> Result<(), Failure> {
     let Ok(out) = output.canonicalize() else {
         return Ok(());

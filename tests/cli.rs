@@ -1022,6 +1022,60 @@ fn render_refuses_to_overwrite_the_obj() {
 }
 
 #[test]
+fn render_refuses_to_overwrite_a_material_library_or_external_buffer() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj_text = format!("mtllib  my lib.mtl\nusemtl red\n{TETRA}");
+    write(dir.path(), "tetra.obj", &obj_text);
+    let mtl_text = "newmtl red\nKd 1 0 0\n";
+    for library in ["my lib.mtl", "lib.mtl"] {
+        let path = write(dir.path(), library, mtl_text);
+        let out = run(
+            dir.path(),
+            &[
+                "render",
+                "--model",
+                "tetra.obj",
+                "--size",
+                "8x8",
+                "-o",
+                library,
+            ],
+        );
+        assert_input_error(&out, &[library]);
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), mtl_text);
+    }
+
+    // A glTF file whose buffer lives in a file beside it.
+    let positions: Vec<u8> = [0f32, 0., 0., 1., 0., 0., 0., 1., 0.]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    let bin = dir.path().join("tri.bin");
+    std::fs::write(&bin, &positions).unwrap();
+    let gltf = r#"{"asset":{"version":"2.0"},"buffers":[{"uri":"tri.bin","byteLength":36}],
+        "bufferViews":[{"buffer":0,"byteLength":36}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
+        "min":[0,0,0],"max":[1,1,0]}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+        "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0}"#;
+    write(dir.path(), "tri.gltf", gltf);
+    assert_ok(&run(
+        dir.path(),
+        &[
+            "render", "--model", "tri.gltf", "--size", "8x8", "-o", "tri.png",
+        ],
+    ));
+    let out = run(
+        dir.path(),
+        &[
+            "render", "--model", "tri.gltf", "--size", "8x8", "-o", "tri.bin",
+        ],
+    );
+    assert_input_error(&out, &["tri.bin"]);
+    assert_eq!(std::fs::read(&bin).unwrap(), positions);
+}
+
+#[test]
 fn existing_output_is_replaced_atomically() {
     let dir = tempfile::tempdir().unwrap();
     let path = write(dir.path(), "out.png", "an old file that is not a PNG");

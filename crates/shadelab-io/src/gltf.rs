@@ -424,6 +424,25 @@ fn load_buffers(
 }
 
 /// The file a relative URI names.
+/// The files a glTF file's buffers name (not its data URIs), beside it;
+/// none when it cannot be read or parsed.
+pub(crate) fn external_buffers(path: &Path, base: &Path) -> Vec<PathBuf> {
+    let Ok(bytes) = read_capped(path, MAX_MESH_BYTES) else {
+        return Vec::new();
+    };
+    let Ok(gltf) = ::gltf::Gltf::from_slice_without_validation(&bytes) else {
+        return Vec::new();
+    };
+    gltf.document
+        .as_json()
+        .buffers
+        .iter()
+        .filter_map(|buffer| buffer.uri.as_deref())
+        .filter(|uri| !uri.starts_with("data:"))
+        .filter_map(|uri| relative_path(uri, Some(base)).ok())
+        .collect()
+}
+
 fn relative_path(uri: &str, base_dir: Option<&Path>) -> Result<PathBuf, String> {
     let base = base_dir.ok_or("external buffers cannot be read here")?;
     if uri.contains(':') || uri.starts_with('/') || uri.starts_with('\\') {

@@ -12,7 +12,8 @@ mod stl;
 
 pub use gltf::{load_gltf, parse_gltf};
 pub use mesh_file::{
-    load_mesh, load_mesh_file, parse_mesh, FileMaterial, MeshFile, MAX_MESH_BYTES, MESH_EXTENSIONS,
+    companion_files, load_mesh, load_mesh_file, parse_mesh, FileMaterial, MeshFile, MAX_MESH_BYTES,
+    MESH_EXTENSIONS,
 };
 pub use obj::{load_obj, load_obj_file, parse_obj, parse_obj_file};
 pub use ply::{load_ply, parse_ply};

@@ -9,7 +9,7 @@
 //! before allocating), and reports errors as [`LoadError`]s naming the file.
 
 use std::io::Read;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use shadelab_core::{Mesh, MeshError, Rgb};
 
@@ -77,6 +77,24 @@ pub fn load_mesh_file(path: &Path) -> Result<MeshFile, LoadError> {
         mesh,
         material: None,
     })
+}
+
+/// The files besides `path` that loading it reads: an OBJ file's material
+/// libraries (each `mtllib` name, whole and split at blanks, beside the
+/// file) and a glTF file's external buffers; none for the other formats.
+/// For callers that must not write over anything a model came from, so it
+/// lists names whether or not they exist, and nothing for a file it cannot
+/// read or parse.
+pub fn companion_files(path: &Path) -> Vec<PathBuf> {
+    let base = path.parent().unwrap_or(Path::new("."));
+    match extension(path).as_deref() {
+        Some("obj") => crate::obj::library_names(path)
+            .into_iter()
+            .map(|name| base.join(name))
+            .collect(),
+        Some("gltf" | "glb") => crate::gltf::external_buffers(path, base),
+        _ => Vec::new(),
+    }
 }
 
 fn extension(path: &Path) -> Option<String> {

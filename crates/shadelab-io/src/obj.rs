@@ -59,6 +59,32 @@ pub fn load_obj_file(path: &Path) -> Result<MeshFile, LoadError> {
     })
 }
 
+/// Every library name the file's `mtllib` statements give, whole and split
+/// at blanks (as [`load_obj_file`] tries them); none when it cannot be read.
+pub(crate) fn library_names(path: &Path) -> Vec<String> {
+    let Ok(text) = read_text(path) else {
+        return Vec::new();
+    };
+    let mut names = Vec::new();
+    for line in text.lines() {
+        let Some(rest) = line.trim_start().strip_prefix("mtllib") else {
+            continue;
+        };
+        if !rest.starts_with(char::is_whitespace) {
+            continue;
+        }
+        let rest = rest.trim();
+        if rest.is_empty() {
+            continue;
+        }
+        names.push(rest.to_owned());
+        names.extend(rest.split_whitespace().map(str::to_owned));
+    }
+    names.sort();
+    names.dedup();
+    names
+}
+
 /// Parses OBJ text; `name` is used in error messages. Materials are ignored.
 ///
 /// # Errors

@@ -21,14 +21,11 @@ pub fn snap(pixels: f64) -> i64 {
     // |x| < 2^52; beyond i64 the casts saturate, as `round() as i64` does.
     let x = pixels * SUBPIXEL_ONE as f64;
     let t = x as i64;
+    // Without branches: the remainder's sign is a coin toss from vertex to
+    // vertex, and mispredicted branches here cost more than the arithmetic.
     let rest = x - t as f64;
-    if rest >= 0.5 {
-        t.saturating_add(1)
-    } else if rest <= -0.5 {
-        t.saturating_sub(1)
-    } else {
-        t
-    }
+    t.saturating_add(i64::from(rest >= 0.5))
+        .saturating_sub(i64::from(rest <= -0.5))
 }
 
 #[cfg(test)]
