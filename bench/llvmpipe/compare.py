@@ -289,6 +289,10 @@ def main():
     parser.add_argument("--frames", type=int, default=31)
     parser.add_argument("--warmup", type=int, default=3)
     parser.add_argument("--budget", type=float, default=3.0, help="seconds per llvmpipe row at most")
+    parser.add_argument(
+        "--rounds", type=int, default=3,
+        help="times each row is measured (llvmpipe, then shadelab); the median round is reported",
+    )
     parser.add_argument("--command", default="bash bench/llvmpipe/run.sh")
     args = parser.parse_args()
 
@@ -307,8 +311,23 @@ def main():
             ours_png = args.scenes / f"{stem}-{shading}.png"
             if not ours_png.exists():
                 continue
-            gl_ms, gl_pixels = gl.time(scene, shading, args.frames, args.warmup, args.budget)
-            ours = shadelab_times(args.shadelab, model, size, shading, args.frames, args.models_dir)
+            # Rounds alternate the two renderers, so that a stretch of load on
+            # a shared machine weighs on both; each takes its median round.
+            gl_rounds, ours_rounds = [], []
+            for _ in range(max(args.rounds, 1)):
+                gl_ms, gl_pixels = gl.time(scene, shading, args.frames, args.warmup, args.budget)
+                gl_rounds.append(gl_ms)
+                ours_rounds.append(
+                    shadelab_times(args.shadelab, model, size, shading, args.frames, args.models_dir)
+                )
+            gl_ms = statistics.median(gl_rounds)
+            ours = {
+                threads: {
+                    "median_ms": statistics.median(o[threads]["median_ms"] for o in ours_rounds),
+                    "covered_pixels": ours_rounds[0][threads]["covered_pixels"],
+                }
+                for threads in (1, 2)
+            }
             Image.fromarray(gl_pixels).save(args.images / f"{stem}-{shading}-llvmpipe.png")
             ours_pixels = np.asarray(Image.open(ours_png).convert("RGB"))
             differ = (np.abs(ours_pixels.astype(int) - gl_pixels.astype(int)) > 2).any(axis=2)
@@ -345,7 +364,10 @@ def report(args, gl, rows, load_before, load_after):
     p(f"Measured {time.strftime('%Y-%m-%d %H:%M %Z')} on {cpu_name()}, {os.cpu_count()} cores;")
     p(f"load average (1, 5, 15 min) {' '.join(load_before)} before, {' '.join(load_after)} after.")
     p(f"llvmpipe: `{gl.renderer}`, OpenGL {gl.version}, LP_NUM_THREADS={os.environ['LP_NUM_THREADS']}.")
-    p(f"Command: `{args.command}`. Median ms per frame of up to {args.frames} frames after {args.warmup} warm-up;")
+    p(
+        f"Command: `{args.command}`. Median ms per frame of up to {args.frames} frames after {args.warmup} warm-up,"
+        f" each row measured in {args.rounds} alternating rounds (llvmpipe, shadelab) and the median round kept;"
+    )
     p("llvmpipe's frame is clear + draw + glFinish; shadelab's is `Renderer::render_into` (clear, draw, RGB image).")
     p("")
     p("### shadelab (tiled, 2 threads) against llvmpipe (2 threads)")

@@ -6,6 +6,7 @@
 #
 #   bash bench/llvmpipe/run.sh                 # the whole standard set
 #   FRAMES=11 bash bench/llvmpipe/run.sh       # quicker
+#   ROUNDS=5 bash bench/llvmpipe/run.sh        # each row measured 5 times (default 3), median kept
 #   MODELS=bunny,quad SIZES=1920x1080 bash bench/llvmpipe/run.sh
 #   UPDATE=1 bash bench/llvmpipe/run.sh        # also rewrite BENCHMARKS.md's measured part
 #
@@ -39,7 +40,8 @@ rm -rf "$out/scenes"
 
 LP_NUM_THREADS=2 "$out/venv/bin/python" bench/llvmpipe/compare.py \
   --scenes "$out/scenes" --shadelab "$bin" --images "$out/images" --frames "$frames" \
-  --command "${FRAMES:+FRAMES=$FRAMES }${MODELS:+MODELS=$MODELS }${SIZES:+SIZES=$SIZES }bash bench/llvmpipe/run.sh" \
+  --rounds "${ROUNDS:-3}" \
+  --command "${FRAMES:+FRAMES=$FRAMES }${ROUNDS:+ROUNDS=$ROUNDS }${MODELS:+MODELS=$MODELS }${SIZES:+SIZES=$SIZES }bash bench/llvmpipe/run.sh" \
   | tee "$out/report.md"
 
 if [ -n "${UPDATE:-}" ]; then
