@@ -385,6 +385,9 @@ impl Chunk {
         let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
             return Some(());
         };
+        if t.covers_no_centre() {
+            return Some(());
+        }
         let vertex = |k: usize| ScreenVertex {
             x: x[k],
             y: y[k],
@@ -494,6 +497,9 @@ impl Chunk {
             let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
                 continue;
             };
+            if t.covers_no_centre() {
+                continue;
+            }
             let planes = t.planes(&triangle, attrs, options.interpolation);
             t.color = color;
             t.flip = if back { -1.0 } else { 1.0 };
