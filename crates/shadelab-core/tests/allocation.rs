@@ -1,7 +1,8 @@
 //! The tiled rasterizer allocates nothing per frame once warmed up: every
 //! buffer lives in the `Renderer` and is cleared, not dropped. Counted with
 //! dhat's heap profiler in testing mode, over frames of each method on a
-//! one-thread pool (the pool and the renderer are made before counting).
+//! one-thread and on a two-thread pool (the pools and the renderers are
+//! made, and warmed up, before counting).
 
 use glam::Vec3;
 use shadelab_core::{
@@ -31,34 +32,40 @@ fn frames_after_the_first_allocate_nothing() {
         }],
         material: Material::default(),
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
-    let mut renderer = Renderer::new();
-    let mut image = Image::filled(320, 240, Rgb8::new(0, 0, 0));
-    let (before, after) = pool.install(|| {
-        let mut frame = |shading: Shading| {
-            let options = RenderOptions {
-                width: 320,
-                height: 240,
-                shading,
-                ..RenderOptions::default()
+    let mut counts = Vec::new();
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let mut renderer = Renderer::new();
+        let mut image = Image::filled(320, 240, Rgb8::new(0, 0, 0));
+        counts.push(pool.install(|| {
+            let mut frame = |shading: Shading| {
+                let options = RenderOptions {
+                    width: 320,
+                    height: 240,
+                    shading,
+                    ..RenderOptions::default()
+                };
+                renderer.render_into(&scene, &options, &mut image).unwrap();
             };
-            renderer.render_into(&scene, &options, &mut image).unwrap();
-        };
-        for _ in 0..3 {
-            Shading::ALL.into_iter().for_each(&mut frame);
-        }
-        let before = dhat::HeapStats::get();
-        for _ in 0..5 {
-            Shading::ALL.into_iter().for_each(&mut frame);
-        }
-        (before, dhat::HeapStats::get())
-    });
+            // Enough warm-up frames that each thread has drawn bands of
+            // every method (which thread takes which band varies).
+            for _ in 0..10 {
+                Shading::ALL.into_iter().for_each(&mut frame);
+            }
+            let before = dhat::HeapStats::get();
+            for _ in 0..5 {
+                Shading::ALL.into_iter().for_each(&mut frame);
+            }
+            let after = dhat::HeapStats::get();
+            (threads, after.total_blocks - before.total_blocks)
+        }));
+    }
     dhat::assert_eq!(
-        after.total_blocks - before.total_blocks,
-        0,
-        "allocations during 15 warmed-up frames"
+        counts,
+        vec![(1, 0), (2, 0)],
+        "allocations during 15 warmed-up frames (threads, blocks)"
     );
 }
