@@ -142,7 +142,7 @@ struct VertexTable {
 
 impl VertexTable {
     fn update(&mut self, corners: &[u32], corner_normals: &[u32], normal_count: usize) {
-        if self.key_positions == corners && self.key_normals == corner_normals {
+        if same(&self.key_positions, corners) && same(&self.key_normals, corner_normals) {
             return;
         }
         self.key_positions.clear();
@@ -189,7 +189,7 @@ struct FaceNormals {
 
 impl FaceNormals {
     fn update(&mut self, mesh: &crate::mesh::Mesh) {
-        if self.key_positions == mesh.positions() && self.key_corners == mesh.corners() {
+        if same(&self.key_positions, mesh.positions()) && same(&self.key_corners, mesh.corners()) {
             return;
         }
         self.key_positions.clear();
@@ -210,6 +210,16 @@ impl FaceNormals {
                 }
             });
     }
+}
+
+/// `a == b`, compared in parallel: the per-mesh caches are keyed by whole
+/// meshes, checked every frame.
+fn same<T: PartialEq + Sync>(a: &[T], b: &[T]) -> bool {
+    const CHUNK: usize = 1 << 14;
+    a.len() == b.len()
+        && a.par_chunks(CHUNK)
+            .zip(b.par_chunks(CHUNK))
+            .all(|(x, y)| x == y)
 }
 
 /// What setup needs to know about the frame.
