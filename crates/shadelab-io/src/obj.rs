@@ -66,19 +66,10 @@ pub(crate) fn library_names(path: &Path) -> Vec<String> {
         return Vec::new();
     };
     let mut names = Vec::new();
-    for line in text.lines() {
-        let Some(rest) = line.trim_start().strip_prefix("mtllib") else {
-            continue;
-        };
-        if !rest.starts_with(char::is_whitespace) {
-            continue;
+    for (_, statement) in statements_of(&text) {
+        if let Some(("mtllib", rest)) = split_keyword(&statement) {
+            names.extend(library_files(rest).map(str::to_owned));
         }
-        let rest = rest.trim();
-        if rest.is_empty() {
-            continue;
-        }
-        names.push(rest.to_owned());
-        names.extend(rest.split_whitespace().map(str::to_owned));
     }
     names.sort();
     names.dedup();
@@ -125,6 +116,38 @@ fn read_text(path: &Path) -> Result<String, LoadError> {
     })
 }
 
+/// The files an `mtllib` statement may name: the whole of it first (one
+/// name containing blanks), then each blank-separated name.
+fn library_files(statement: &str) -> impl Iterator<Item = &str> {
+    std::iter::once(statement).chain(
+        statement
+            .split_whitespace()
+            .filter(move |&file| file != statement),
+    )
+}
+
+/// An OBJ text's statements, each with the number of its first line: a
+/// trailing backslash joins a line to the next, and `#` starts a comment.
+fn statements_of(text: &str) -> impl Iterator<Item = (usize, String)> + '_ {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut logical = String::new();
+    let mut first_line = 0;
+    text.lines().enumerate().filter_map(move |(k, raw)| {
+        if logical.is_empty() {
+            first_line = k + 1;
+        }
+        if let Some(head) = raw.strip_suffix('\\') {
+            logical.push_str(head);
+            logical.push(' ');
+            return None;
+        }
+        logical.push_str(raw);
+        let mut statement = std::mem::take(&mut logical);
+        statement.truncate(statement.find('#').unwrap_or(statement.len()));
+        Some((first_line, statement))
+    })
+}
+
 /// The material `wanted` from the first library that defines it with a colour.
 fn find_material(
     wanted: &str,
@@ -143,12 +166,13 @@ fn find_material(
     for statement in libraries {
         // `mtllib` takes several names separated by blanks, but exporters
         // also write one name containing blanks: try the whole first.
-        let whole = read_once(statement).map(|text| (statement.as_str(), text));
+        let mut files = library_files(statement);
+        let whole = files
+            .next()
+            .and_then(|file| read_once(file).map(|text| (file, text)));
         let texts: Vec<(&str, String)> = match whole {
             Some(found) => vec![found],
-            None => statement
-                .split_whitespace()
-                .filter(|&file| file != statement)
+            None => files
                 .filter_map(|file| read_once(file).map(|text| (file, text)))
                 .collect(),
         };
@@ -259,7 +283,6 @@ struct Summary {
 
 /// Checks every line `tobj` will read, so errors can name the line.
 fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut vertices = 0i64;
     let mut normals = 0i64;
     let mut texcoords = 0i64;
@@ -267,8 +290,6 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
     let mut corners = 0usize;
     let mut triangles = 0usize;
     let mut every_corner_has_normal = true;
-    let mut logical = String::new();
-    let mut first_line = 0;
     let mut statements = String::new();
     let mut group = Mesh::NOT_SMOOTHED;
     let mut groups: Vec<u32> = Vec::new();
@@ -278,25 +299,13 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
     // Materials by first use: name and faces using it.
     let mut usage: Vec<(String, usize)> = Vec::new();
     let mut usage_index: HashMap<String, usize> = HashMap::new();
-    for (k, raw) in text.lines().enumerate() {
-        // A trailing backslash continues a statement on the next line.
-        if logical.is_empty() {
-            first_line = k + 1;
-        }
-        if let Some(head) = raw.strip_suffix('\\') {
-            logical.push_str(head);
-            logical.push(' ');
-            continue;
-        }
-        logical.push_str(raw);
-        let line = std::mem::take(&mut logical);
+    for (first_line, statement) in statements_of(text) {
         let error = |message: String| LoadError::Syntax {
             path: name.to_owned(),
             line: first_line,
             message,
         };
-        let statement = line.split('#').next().unwrap_or("");
-        let Some((keyword, rest)) = split_keyword(statement) else {
+        let Some((keyword, rest)) = split_keyword(&statement) else {
             continue;
         };
         // A face's corners are counted against the limits before they are
