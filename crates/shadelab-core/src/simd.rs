@@ -730,11 +730,6 @@ impl<S: Simd> Vi<S> {
     pub fn gt(self, o: Self) -> Self {
         Vi(self.1.i_gt(self.0, o.0), self.1)
     }
-    /// All ones where `self < o`.
-    #[inline(always)]
-    pub fn lt(self, o: Self) -> Self {
-        Vi(self.1.i_gt(o.0, self.0), self.1)
-    }
     /// Bits 0..8 of the lanes where `self == o`.
     #[inline(always)]
     pub fn eq_bits(self, o: Self) -> u32 {

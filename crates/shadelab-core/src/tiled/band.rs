@@ -16,12 +16,22 @@
 //!
 //! Then per block: depth test "less" (depth from its plane), and shading
 //! specialised per method by the [`Shader`] type parameter. Phong does not
-//! shade block by block: small triangles leave most lanes of a block empty,
-//! so fragments that pass the depth test are packed into a queue and lit 8
-//! at a time (two blocks of 8 lit together, so that their long dependency
-//! chains overlap), and their colours written back in the order they were
-//! queued (a later fragment of the same pixel is written later, as without
-//! the queue; eight queued pixels in a row are written with one store).
+//! interpolate or shade block by block: small triangles leave most lanes of
+//! a block empty (a 12-pixel triangle fills 2 lanes per block on average),
+//! so the positions of the fragments that pass the depth test are packed
+//! into whole lanes and interpolated 8 at a time (whole blocks of large
+//! triangles skip the packing), with the same operations as a block would
+//! use, so the values do not depend on the packing. The interpolated
+//! fragments go into a second queue and are lit 16 at a time (two groups
+//! of 8 lit together, so that their long dependency chains overlap), and
+//! their colours written back in the order they were queued (a later
+//! fragment of the same pixel is written later, as without the queues; the
+//! position queue is emptied at the end of each triangle; eight queued
+//! pixels in a row are written with one store).
+//!
+//! Other shaders evaluate their planes once per row (only the depth plane
+//! for Phong, whose eight planes would mostly be evaluated for rows whose
+//! blocks are hidden).
 //!
 //! Nothing here allocates. Everything is `#[inline(always)]` so that
 //! [`crate::simd::dispatch`] compiles it for AVX2 and for the portable path.
@@ -46,7 +56,9 @@ pub(crate) struct Band {
     /// Polygon stamps for self-crossing polygons, cleared when first used in a frame.
     stamp: Vec<u32>,
     stamp_clean: bool,
-    /// Fragments waiting to be shaded (deferred shaders).
+    /// Positions of the current triangle's fragments waiting to be
+    /// interpolated, then fragments waiting to be lit (deferred shaders).
+    pending: Pending,
     queue: Queue,
     /// Fragments that passed the depth test this frame.
     pub fragments: u64,
@@ -60,6 +72,17 @@ pub(crate) struct Band {
 struct Queue {
     attrs: [[f32; 24]; MAX_ATTRS],
     at: [i32; 24],
+    len: usize,
+}
+
+/// Fragments of the triangle being drawn that passed the depth test, packed
+/// into whole lanes: column from the triangle's first, rows from its first
+/// row, buffer index.
+#[derive(Debug, Default)]
+struct Pending {
+    x: [f32; 16],
+    dy: [f32; 16],
+    at: [i32; 16],
     len: usize,
 }
 
@@ -82,6 +105,7 @@ impl Band {
         self.fragments = 0;
         self.covered = 0;
         self.queue.len = 0;
+        self.pending.len = 0;
         self.stamp_clean = false;
         match pass {
             Pass::Shade => {
@@ -198,6 +222,9 @@ impl Band {
             Walk::Blocks => self.walk_blocks(s, &fill, rows, band_y0),
             Walk::Spans => self.walk_spans(s, &fill, rows, band_y0),
         }
+        if Sh::DEFERRED && self.pending.len > 0 {
+            self.interpolate_pending(s, &fill);
+        }
     }
 
     /// Blocks of 8 pixels along each row of the bounding box, with the edge
@@ -227,21 +254,20 @@ impl Band {
             block_step[i] = Vi::splat(s, a * 8);
             row_step[i] = Vi::splat(s, t.b[i] * SUBPIXEL_ONE as i32);
         }
-        // Lanes of the last block past the box (and so maybe past the image).
-        let last_lanes = lane_index.lt(Vi::splat(s, t.x1 - (first_block + (block_count - 1) * 8)));
-        let minus_one = Vi::splat(s, -1);
+        // A fourth function, `x1 - 1 - x`, keeps out the lanes past the box
+        // (and so maybe past the image) in the last block.
+        let right_start = Vi::splat(s, t.x1 - 1 - first_block) - lane_index;
+        let (right_step, minus_one) = (Vi::splat(s, 8), Vi::splat(s, -1));
         for y in rows {
             let row_start = (y as u32 - band_y0) as usize * self.stride;
-            let row = f.row_values(y);
-            let mut e = row_e;
+            let row = f.row(y);
+            let (mut e, mut right) = (row_e, right_start);
             for block in 0..block_count {
-                let mut inside = (e[0] | e[1] | e[2]).gt(minus_one);
+                let inside = (e[0] | e[1] | e[2] | right).gt(minus_one);
                 for i in 0..3 {
                     e[i] = e[i] + block_step[i];
                 }
-                if block == block_count - 1 {
-                    inside = inside & last_lanes;
-                }
+                right = right - right_step;
                 if inside.mask_bits() != 0 {
                     let x = first_block + block * 8;
                     self.block(s, f, inside, row_start + x as usize, x, &row);
@@ -270,7 +296,7 @@ impl Band {
                 continue;
             };
             let row_start = (y as u32 - band_y0) as usize * self.stride;
-            let row = f.row_values(y);
+            let row = f.row_all(y);
             let (from, to) = (Vi::splat(s, left - 1), Vi::splat(s, right));
             let mut x = left & !7;
             while x < right {
@@ -283,8 +309,7 @@ impl Band {
     }
 
     /// Depth-tests, shades and writes the lanes of `inside` in the block at
-    /// column `x` (buffer index `at`); `row` holds the planes' values at the
-    /// start of this row.
+    /// column `x` (buffer index `at`) of `row`.
     #[inline(always)]
     fn block<S: Simd, Sh: Shader>(
         &mut self,
@@ -293,7 +318,7 @@ impl Band {
         inside: Vi<S>,
         at: usize,
         x: i32,
-        row: &[f32; 2 + MAX_ATTRS],
+        row: &Row,
     ) {
         let mut inside = inside;
         if f.t.once != 0 {
@@ -308,7 +333,7 @@ impl Band {
             return;
         }
         let x = f.lanes + Vf::splat(s, (x - f.t.x0) as f32);
-        let depth = x.mul_add(f.dx[0], Vf::splat(s, row[0]));
+        let depth = x.mul_add(f.dx[0], Vf::splat(s, row.values[0]));
         let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
         let stored = Vf::load(s, depth_slot);
         let pass = inside & depth.lt(stored);
@@ -319,60 +344,130 @@ impl Band {
         Vf::select(pass, depth, stored).store(depth_slot);
         self.fragments += u64::from(bits.count_ones());
 
-        let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
-        match f.interpolation {
-            Interpolation::Perspective if Sh::ATTRS > 0 => {
-                let inv_w = x.mul_add(f.dx[1], Vf::splat(s, row[1]));
-                let w = inv_w.recip();
-                for k in 0..Sh::ATTRS {
-                    attrs[k] = x.mul_add(f.dx[2 + k], Vf::splat(s, row[2 + k])) * w;
-                }
-            }
-            _ => {
-                for k in 0..Sh::ATTRS {
-                    attrs[k] = x.mul_add(f.dx[2 + k], Vf::splat(s, row[2 + k]));
-                }
-            }
-        }
         if Sh::DEFERRED {
-            if f.t.flip != 1.0 {
-                for k in 0..3 {
-                    attrs[k] = attrs[k] * f.t.flip;
-                }
+            if bits == 0xff {
+                // A whole block (inside large triangles): no packing needed.
+                let index = Vi::ramp(s) + Vi::splat(s, at as i32);
+                self.queue_block(s, f, x, row, index.0);
+            } else {
+                self.pend(s, f, x, row.dy, bits, at);
             }
-            self.enqueue(s, f.shader, f.shader_lanes, &attrs, bits, at);
             return;
         }
+        let attrs = interpolate(s, f, x, |j| Vf::splat(s, row.values[j]));
         let colors = f.shader.shade(f.shader_lanes, s, f.t, &attrs);
         let color_slot: &mut [i32; 8] = (&mut self.color[at..at + 8]).try_into().unwrap();
         let old = Vi(s.i_load(color_slot), s);
         s.i_store(Vi::select(pass, colors, old).0, color_slot);
     }
 
-    /// Queues the fragments of `bits` (block at buffer index `at`), and
-    /// shades 16 of them once there are 16.
+    /// Keeps the positions of the lanes in `bits` (columns `x` from the
+    /// triangle's first, `dy` rows down; block at buffer index `at`) for
+    /// interpolation 8 at a time.
     #[inline(always)]
-    fn enqueue<S: Simd, Sh: Shader>(
+    fn pend<S: Simd, Sh: Shader>(
         &mut self,
         s: S,
-        shader: &Sh,
-        lanes: &Sh::Lanes<S>,
-        attrs: &[Vf<S>; MAX_ATTRS],
+        f: &Fill<'_, S, Sh>,
+        x: Vf<S>,
+        dy: f32,
         bits: u32,
         at: usize,
+    ) {
+        let p = &mut self.pending;
+        let len = p.len;
+        x.compress(bits)
+            .store((&mut p.x[len..len + 8]).try_into().unwrap());
+        Vf::splat(s, dy).store((&mut p.dy[len..len + 8]).try_into().unwrap());
+        let index = Vi::ramp(s) + Vi::splat(s, at as i32);
+        let slot: &mut [i32; 8] = (&mut p.at[len..len + 8]).try_into().unwrap();
+        s.i_store(index.compress(bits).0, slot);
+        p.len = len + bits.count_ones() as usize;
+        if p.len >= 8 {
+            self.interpolate_pending(s, f);
+        }
+    }
+
+    /// Interpolates the first (up to) 8 pending fragments and queues them
+    /// for lighting. Each plane is evaluated as in a block (`origin + dy·rows`,
+    /// then `x·dx +` that), so the values are those of an 8-pixel block.
+    #[inline(always)]
+    fn interpolate_pending<S: Simd, Sh: Shader>(&mut self, s: S, f: &Fill<'_, S, Sh>) {
+        let p = &mut self.pending;
+        let x = Vf::load(s, p.x[..8].try_into().unwrap());
+        let dy = Vf::load(s, p.dy[..8].try_into().unwrap());
+        let index = s.i_load(p.at[..8].try_into().unwrap());
+        let count = p.len.min(8);
+        // Later positions move to the front.
+        let rest_x = Vf::load(s, p.x[8..].try_into().unwrap());
+        rest_x.store((&mut p.x[..8]).try_into().unwrap());
+        let rest_dy = Vf::load(s, p.dy[8..].try_into().unwrap());
+        rest_dy.store((&mut p.dy[..8]).try_into().unwrap());
+        let rest_at = s.i_load(p.at[8..].try_into().unwrap());
+        s.i_store(rest_at, (&mut p.at[..8]).try_into().unwrap());
+        p.len -= count;
+        self.interpolate_and_queue(s, f, x, dy, index, count);
+    }
+
+    /// Interpolates a whole block and queues it for lighting, from the row's
+    /// values when it has them (spans), else as `interpolate_and_queue` does.
+    #[inline(always)]
+    fn queue_block<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        x: Vf<S>,
+        row: &Row,
+        index: S::I,
+    ) {
+        if !row.all {
+            return self.interpolate_and_queue(s, f, x, Vf::splat(s, row.dy), index, 8);
+        }
+        let at_row = |j: usize| Vf::splat(s, row.values[j]);
+        let attrs = interpolate(s, f, x, at_row);
+        self.queue_lit(s, f, &attrs, index, 8);
+    }
+
+    /// Interpolates the fragments at columns `x`, `dy` rows down (buffer
+    /// indices `index`), and queues the first `count` of them for lighting.
+    #[inline(always)]
+    fn interpolate_and_queue<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        x: Vf<S>,
+        dy: Vf<S>,
+        index: S::I,
+        count: usize,
+    ) {
+        let at_row = |j: usize| {
+            let plane = &f.planes[j];
+            Vf::splat(s, plane.at_origin) + Vf::splat(s, plane.dy) * dy
+        };
+        let attrs = interpolate(s, f, x, at_row);
+        self.queue_lit(s, f, &attrs, index, count);
+    }
+
+    /// Appends the first `count` lanes of `attrs` (buffer indices `index`)
+    /// to the lighting queue, and lights 16 once there are 16.
+    #[inline(always)]
+    fn queue_lit<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        attrs: &[Vf<S>; MAX_ATTRS],
+        index: S::I,
+        count: usize,
     ) {
         let q = &mut self.queue;
         let len = q.len;
         for k in 0..Sh::ATTRS {
-            let slot: &mut [f32; 8] = (&mut q.attrs[k][len..len + 8]).try_into().unwrap();
-            attrs[k].compress(bits).store(slot);
+            attrs[k].store((&mut q.attrs[k][len..len + 8]).try_into().unwrap());
         }
-        let index = Vi::ramp(s) + Vi::splat(s, at as i32);
-        let slot: &mut [i32; 8] = (&mut q.at[len..len + 8]).try_into().unwrap();
-        s.i_store(index.compress(bits).0, slot);
-        q.len = len + bits.count_ones() as usize;
+        s.i_store(index, (&mut q.at[len..len + 8]).try_into().unwrap());
+        q.len = len + count;
         if q.len >= 16 {
-            self.shade_queue(s, shader, lanes);
+            self.shade_queue(s, f.shader, f.shader_lanes);
         }
     }
 
@@ -444,6 +539,19 @@ impl Band {
     }
 }
 
+/// One row of a triangle: its distance from the triangle's first row, and
+/// planes' values at the triangle's first column: the depth plane's always,
+/// the others too unless the shader is deferred. A deferred shader (Phong,
+/// eight planes) evaluates them per block that passes the depth test, with
+/// the same operations (`origin + dy·rows`), so the values are the same.
+#[derive(Clone, Copy)]
+struct Row {
+    dy: f32,
+    values: [f32; 2 + MAX_ATTRS],
+    /// Whether `values` holds every plane.
+    all: bool,
+}
+
 /// What every block of one triangle needs.
 struct Fill<'a, S: Simd, Sh: Shader> {
     t: &'a Triangle,
@@ -459,16 +567,78 @@ struct Fill<'a, S: Simd, Sh: Shader> {
 }
 
 impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
-    /// The planes' values at the triangle's first column on row `y`.
+    /// Row `y` (see [`Row`]).
     #[inline(always)]
-    fn row_values(&self, y: i32) -> [f32; 2 + MAX_ATTRS] {
+    fn row(&self, y: i32) -> Row {
         let dy = (y - self.t.y0) as f32;
-        let mut row = [0f32; 2 + MAX_ATTRS];
-        for j in 0..plane_count(Sh::ATTRS) {
-            row[j] = self.planes[j].at_origin + self.planes[j].dy * dy;
+        let mut values = [0f32; 2 + MAX_ATTRS];
+        let eager = if Sh::DEFERRED {
+            1
+        } else {
+            plane_count(Sh::ATTRS)
+        };
+        for j in 0..eager {
+            values[j] = self.plane_at_row(j, dy);
         }
-        row
+        Row {
+            dy,
+            values,
+            all: !Sh::DEFERRED,
+        }
     }
+
+    /// Row `y` with every plane's value (large triangles: many blocks per row).
+    #[inline(always)]
+    fn row_all(&self, y: i32) -> Row {
+        let dy = (y - self.t.y0) as f32;
+        let mut values = [0f32; 2 + MAX_ATTRS];
+        for j in 0..plane_count(Sh::ATTRS) {
+            values[j] = self.plane_at_row(j, dy);
+        }
+        Row {
+            dy,
+            values,
+            all: true,
+        }
+    }
+
+    /// Plane `j`'s value at the triangle's first column, `dy` rows down.
+    #[inline(always)]
+    fn plane_at_row(&self, j: usize, dy: f32) -> f32 {
+        self.planes[j].at_origin + self.planes[j].dy * dy
+    }
+}
+
+/// The attributes at columns `x` of the triangle, given each plane's value
+/// at the first column of the fragments' rows (for a deferred shader, the
+/// normal flipped for back faces).
+#[inline(always)]
+fn interpolate<S: Simd, Sh: Shader>(
+    s: S,
+    f: &Fill<'_, S, Sh>,
+    x: Vf<S>,
+    at_row: impl Fn(usize) -> Vf<S>,
+) -> [Vf<S>; MAX_ATTRS] {
+    let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
+    match f.interpolation {
+        Interpolation::Perspective if Sh::ATTRS > 0 => {
+            let w = x.mul_add(f.dx[1], at_row(1)).recip();
+            for k in 0..Sh::ATTRS {
+                attrs[k] = x.mul_add(f.dx[2 + k], at_row(2 + k)) * w;
+            }
+        }
+        _ => {
+            for k in 0..Sh::ATTRS {
+                attrs[k] = x.mul_add(f.dx[2 + k], at_row(2 + k));
+            }
+        }
+    }
+    if Sh::DEFERRED && f.t.flip != 1.0 {
+        for k in 0..3 {
+            attrs[k] = attrs[k] * f.t.flip;
+        }
+    }
+    attrs
 }
 
 /// The columns `[left, right)` of row `y` whose centres are inside the
