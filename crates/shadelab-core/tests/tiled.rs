@@ -16,7 +16,7 @@ use glam::{DVec3, Vec3};
 use proptest::prelude::*;
 use shadelab_core::{
     builtin_model, vertex_normals, CornerNormals, Image, Interpolation, Mesh, NormalWeighting,
-    Polygons, Rasterizer, RenderOptions, Renderer, Scene, Shading, SimdLevel, Specular,
+    Polygons, Rasterizer, RenderOptions, Renderer, Rgb8, Scene, Shading, SimdLevel, Specular,
     BUILTIN_MODELS,
 };
 
@@ -438,6 +438,53 @@ fn the_image_does_not_depend_on_the_thread_count() {
             assert!(
                 one == render_with(threads),
                 "{} with {threads} threads",
+                shading.name()
+            );
+        }
+    }
+}
+
+/// A renderer keeps its band buffers from frame to frame and clears only
+/// the columns each frame's triangles can reach: frames drawn one after
+/// another by one renderer (the model moving across the image, the image
+/// changing size) must equal the same frames drawn by fresh renderers.
+#[test]
+fn frames_in_sequence_match_fresh_renders() {
+    let mesh = builtin_model("teapot", None).unwrap().normalized();
+    let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
+    let mut kept = Renderer::new();
+    // Kept between frames of one size too: every pixel must be written.
+    let mut again = Image::filled(1, 1, Rgb8([255, 0, 255]));
+    let frames = [
+        (0.0, 320, 240),
+        (1.2, 320, 240),
+        (-1.5, 320, 240),
+        (3.0, 320, 240),
+        (0.4, 203, 157),
+        (-0.9, 400, 120),
+    ];
+    for shading in Shading::ALL {
+        for &(offset, w, h) in &frames {
+            let eye = DVec3::new(offset, 0.8, 3.0);
+            let target = DVec3::new(offset, 0.0, 0.0);
+            let s = scene(
+                mesh.clone(),
+                normals.clone(),
+                camera(eye, target, 30.0, 0.5, 20.0),
+            );
+            let o = RenderOptions {
+                rasterizer: Rasterizer::Tiled,
+                ..options(w, h, shading)
+            };
+            if (again.width(), again.height()) != (w, h) {
+                again = Image::filled(w, h, Rgb8([255, 0, 255]));
+            }
+            kept.render_into(&s, &o, &mut again).unwrap();
+            let mut fresh = Image::filled(w, h, Rgb8([0, 255, 0]));
+            Renderer::new().render_into(&s, &o, &mut fresh).unwrap();
+            assert!(
+                again == fresh,
+                "{} offset {offset} {w}x{h}: a reused renderer drew a different image",
                 shading.name()
             );
         }

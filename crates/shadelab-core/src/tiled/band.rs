@@ -1,7 +1,11 @@
 //! The inner loop: one band of image rows, its triangles, blocks of 8 pixels.
 //!
 //! A band has a depth buffer and a packed-colour buffer for its rows (one
-//! set per thread, reused band after band, so they stay in cache). For each
+//! set per thread, reused band after band, so they stay in cache). Only the
+//! columns its triangles' boxes reach are cleared and read back; the rest
+//! of its rows is written as background directly (a dense model in a wide
+//! image leaves most of each band empty: clearing and reading back whole
+//! rows was a fifth of the bunny's 1920×1080 flat frame). For each
 //! triangle binned to the band, in submission order, each row of its
 //! bounding box within the band is walked in blocks of 8 pixels aligned to
 //! multiples of 8, in one of two ways chosen at setup (`setup::Walk`):
@@ -39,6 +43,8 @@
 // Loops over the three edges, channels and planes index several arrays at once.
 #![allow(clippy::needless_range_loop)]
 
+use std::ops::Range;
+
 use super::setup::{plane_count, Plane, Triangle, Walk, BAND_ROWS};
 use super::shade::{Shader, MAX_ATTRS};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
@@ -49,6 +55,8 @@ use crate::simd::{Simd, Vf, Vi};
 pub(crate) struct Band {
     /// Row stride of the buffers: the image width rounded up to 8.
     stride: usize,
+    /// The columns this frame's triangles may draw, in whole blocks of 8.
+    columns: Range<usize>,
     depth: Vec<f32>,
     color: Vec<i32>,
     /// Coverage counts (coverage pass only).
@@ -96,10 +104,12 @@ pub(crate) enum Pass {
 }
 
 impl Band {
-    /// Prepares the buffers for a frame of `width` pixels per row. The
-    /// colour buffer is not cleared: [`Band::finish`] takes the background
-    /// wherever the depth is still 1.
-    pub fn begin(&mut self, width: u32, rows: u32, pass: Pass) {
+    /// Prepares the buffers for a frame of `width` pixels per row, whose
+    /// triangles' boxes lie within `columns`. Only the blocks of 8 that
+    /// hold those columns are cleared, and [`Band::finish`] reads back only
+    /// those (the rest is background); the colour buffer is not cleared:
+    /// `finish` takes the background wherever the depth is still 1.
+    pub fn begin(&mut self, width: u32, rows: u32, pass: Pass, columns: Range<usize>) {
         self.stride = (width as usize).next_multiple_of(8);
         let len = self.stride * rows as usize;
         self.fragments = 0;
@@ -109,9 +119,15 @@ impl Band {
         self.stamp_clean = false;
         match pass {
             Pass::Shade => {
-                self.depth.clear();
+                self.columns =
+                    (columns.start & !7)..columns.end.next_multiple_of(8).min(self.stride);
                 self.depth.resize(len, 1.0);
                 self.color.resize(len, 0);
+                if !self.columns.is_empty() {
+                    for row in self.depth.chunks_exact_mut(self.stride) {
+                        row[self.columns.clone()].fill(1.0);
+                    }
+                }
             }
             Pass::Count => {
                 self.counts.clear();
@@ -121,7 +137,8 @@ impl Band {
     }
 
     /// Copies the finished band into its rows of the image (the background
-    /// where the depth is still 1) and counts the pixels drawn.
+    /// where the depth is still 1, or outside the drawn columns) and counts
+    /// the pixels drawn.
     #[inline(always)]
     pub fn finish<S: Simd>(
         &mut self,
@@ -133,27 +150,30 @@ impl Band {
         let width = width as usize;
         let mut covered = 0;
         let (far, background) = (Vf::splat(s, 1.0), Vi::splat(s, background));
+        let mut bg = [0; 8];
+        s.i_store(background.0, &mut bg);
+        let drawn_blocks = self.columns.start / 8..self.columns.end / 8;
         for (row, pixels) in out.chunks_mut(width).enumerate() {
             let start = row * self.stride;
             let bytes: &mut [u8] = bytemuck::cast_slice_mut(pixels);
             let mut blocks = bytes.chunks_exact_mut(24);
             for (k, block) in blocks.by_ref().enumerate() {
+                let block: &mut [u8; 24] = block.try_into().unwrap();
+                if !drawn_blocks.contains(&k) {
+                    s.i_store_rgb(background.0, block);
+                    continue;
+                }
                 let at = start + 8 * k;
                 let depth = Vf::load(s, (&self.depth[at..at + 8]).try_into().unwrap());
                 let drawn = depth.lt(far);
                 covered += drawn.mask_bits().count_ones();
                 let color = Vi(s.i_load((&self.color[at..at + 8]).try_into().unwrap()), s);
-                s.i_store_rgb(
-                    Vi::select(drawn, color, background).0,
-                    block.try_into().unwrap(),
-                );
+                s.i_store_rgb(Vi::select(drawn, color, background).0, block);
             }
             let done = width - width % 8;
-            let mut bg = [0; 8];
-            s.i_store(background.0, &mut bg);
             for (j, dst) in blocks.into_remainder().chunks_exact_mut(3).enumerate() {
                 let at = start + done + j;
-                let c = if self.depth[at] < 1.0 {
+                let c = if self.columns.contains(&(done + j)) && self.depth[at] < 1.0 {
                     covered += 1;
                     self.color[at]
                 } else {

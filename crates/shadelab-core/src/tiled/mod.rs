@@ -112,6 +112,17 @@ struct Bin {
     triangles: Vec<Triangle>,
     /// `plane_count` planes per triangle.
     planes: Vec<Plane>,
+    /// The columns `[x0, x1)` of the triangles' boxes, together (empty:
+    /// `x0 >= x1`): the band clears and reads back only those.
+    columns: (i32, i32),
+}
+
+impl Bin {
+    fn clear(&mut self) {
+        self.triangles.clear();
+        self.planes.clear();
+        self.columns = (i32::MAX, i32::MIN);
+    }
 }
 
 /// Consecutive polygons set up by one task, with their per-band bins.
@@ -356,8 +367,7 @@ impl Chunk {
         self.bins.resize_with(frame.bands, Bin::default);
         self.bins.truncate(frame.bands);
         for bin in &mut self.bins {
-            bin.triangles.clear();
-            bin.planes.clear();
+            bin.clear();
         }
         self.stats = RenderStats::default();
         self.flat_surfaces.clear();
@@ -474,6 +484,7 @@ impl Chunk {
             let bin = &mut self.bins[band];
             bin.triangles.push(*t);
             bin.planes.extend_from_slice(planes);
+            bin.columns = (bin.columns.0.min(t.x0), bin.columns.1.max(t.x1));
         }
     }
 
@@ -704,7 +715,19 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             Output::Image(..) => Pass::Shade,
             Output::Counts(_) => Pass::Count,
         };
-        self.band.begin(o.width, y1 - y0, pass);
+        let (x0, x1) = self
+            .chunks
+            .iter()
+            .fold((i32::MAX, i32::MIN), |(x0, x1), chunk| {
+                let columns = chunk.bins[self.index].columns;
+                (x0.min(columns.0), x1.max(columns.1))
+            });
+        let columns = if x0 < x1 {
+            x0 as usize..x1 as usize
+        } else {
+            0..0
+        };
+        self.band.begin(o.width, y1 - y0, pass, columns);
         let stride = plane_count(S::ATTRS);
         let lanes = self.shader.lanes(simd);
         for chunk in self.chunks {
