@@ -126,7 +126,10 @@ impl Bin {
 }
 
 /// Consecutive polygons set up by one task, with their per-band bins.
+/// Aligned to 128 bytes so that chunks set up by different threads share
+/// no cache line (their counters are written per polygon).
 #[derive(Debug, Default)]
+#[repr(align(128))]
 struct Chunk {
     bins: Vec<Bin>,
     stats: RenderStats,
