@@ -128,16 +128,9 @@ impl Band {
                 self.columns =
                     (columns.start & !7)..columns.end.next_multiple_of(8).min(self.stride);
                 self.color.resize(len, 0);
-                if self.columns.len() == self.stride {
-                    self.depth.clear();
-                    self.depth.resize(len, 1.0);
-                } else {
-                    self.depth.resize(len, 1.0);
-                    if !self.columns.is_empty() {
-                        for row in self.depth.chunks_exact_mut(self.stride) {
-                            row[self.columns.clone()].fill(1.0);
-                        }
-                    }
+                self.depth.resize(len, 1.0);
+                for row in self.depth.chunks_exact_mut(self.stride) {
+                    row[self.columns.clone()].fill(1.0);
                 }
             }
             Pass::Count => {
@@ -164,15 +157,13 @@ impl Band {
         let mut bg = [0; 8];
         s.i_store(background.0, &mut bg);
         let drawn_blocks = self.columns.start / 8..self.columns.end / 8;
-        // Full-width bands (a full-screen quad) skip the per-block test.
-        let everywhere = self.columns.len() == self.stride;
         for (row, pixels) in out.chunks_mut(width).enumerate() {
             let start = row * self.stride;
             let bytes: &mut [u8] = bytemuck::cast_slice_mut(pixels);
             let mut blocks = bytes.chunks_exact_mut(24);
             for (k, block) in blocks.by_ref().enumerate() {
                 let block: &mut [u8; 24] = block.try_into().unwrap();
-                if !everywhere && !drawn_blocks.contains(&k) {
+                if !drawn_blocks.contains(&k) {
                     s.i_store_rgb(background.0, block);
                     continue;
                 }
