@@ -14,6 +14,8 @@
 //! [`Mesh::MAX_VERTICES`] vertices. Loaders check these limits against a
 //! file's header or running counts before they allocate.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use glam::Vec3;
 
 /// Why a mesh could not be built.
@@ -85,13 +87,32 @@ pub struct CornerNormals {
 
 /// A polygon mesh: vertex positions and convex polygons wound counter-clockwise
 /// as seen from outside.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Mesh {
     positions: Vec<Vec3>,
     corners: Vec<u32>,
     offsets: Vec<u32>,
     file_normals: Option<CornerNormals>,
     smoothing_groups: Option<Vec<u32>>,
+    /// Names this geometry (see [`Mesh::geometry_id`]).
+    geometry_id: u64,
+}
+
+/// Two meshes are equal when their contents are, whatever their geometry ids.
+impl PartialEq for Mesh {
+    fn eq(&self, other: &Mesh) -> bool {
+        self.positions == other.positions
+            && self.corners == other.corners
+            && self.offsets == other.offsets
+            && self.file_normals == other.file_normals
+            && self.smoothing_groups == other.smoothing_groups
+    }
+}
+
+/// A number no mesh built so far has had.
+fn fresh_geometry_id() -> u64 {
+    static NEXT: AtomicU64 = AtomicU64::new(1);
+    NEXT.fetch_add(1, Ordering::Relaxed)
 }
 
 impl Mesh {
@@ -148,6 +169,7 @@ impl Mesh {
             offsets,
             file_normals: None,
             smoothing_groups: None,
+            geometry_id: fresh_geometry_id(),
         };
         mesh.validate()?;
         Ok(mesh)
@@ -239,6 +261,15 @@ impl Mesh {
         Ok(())
     }
 
+    /// A number that names this mesh's positions and polygons: two meshes
+    /// with the same id have the same ones (a clone keeps its original's id;
+    /// anything that changes them gives a new one). Renderers key what they
+    /// derive from the geometry, such as face normals, by it instead of
+    /// comparing whole meshes every frame.
+    pub(crate) fn geometry_id(&self) -> u64 {
+        self.geometry_id
+    }
+
     /// Vertex positions.
     pub fn positions(&self) -> &[Vec3] {
         &self.positions
@@ -309,6 +340,7 @@ impl Mesh {
         for p in &mut self.positions {
             *p = (*p - centre) * scale;
         }
+        self.geometry_id = fresh_geometry_id();
         self
     }
 }

@@ -490,3 +490,57 @@ fn frames_in_sequence_match_fresh_renders() {
         }
     }
 }
+
+/// A renderer kept between frames caches what it derives from the geometry
+/// (face normals, Gouraud's distinct vertices); each frame after a change
+/// of mesh, of positions only, or of corner normals only must still equal a
+/// fresh renderer's.
+#[test]
+fn a_kept_renderer_sees_every_change_of_geometry() {
+    let teapot = builtin_model("teapot", None).unwrap().normalized();
+    // Same polygons, positions moved: only the positions tell them apart.
+    let moved = Mesh::from_polygons(
+        teapot
+            .positions()
+            .iter()
+            .map(|p| Vec3::new(p.x * 0.7, p.y + 0.1 * p.x, p.z * 1.2))
+            .collect(),
+        (0..teapot.polygon_count()).map(|f| teapot.polygon(f)),
+    )
+    .unwrap();
+    let sphere = builtin_model("sphere", None).unwrap().normalized();
+    let smooth = |m: &Mesh| vertex_normals(m, NormalWeighting::Uniform, None);
+    let creased = |m: &Mesh| vertex_normals(m, NormalWeighting::Angle, Some(20.0));
+    let sequence = [
+        (teapot.clone(), smooth(&teapot)),
+        (moved.clone(), smooth(&moved)),
+        (teapot.clone(), creased(&teapot)),
+        (teapot.clone(), smooth(&teapot)),
+        (sphere.clone(), smooth(&sphere)),
+        (teapot.clone().normalized(), smooth(&teapot)),
+        (teapot.clone(), smooth(&teapot)),
+    ];
+    for shading in Shading::ALL {
+        let mut kept = Renderer::new();
+        for (k, (mesh, normals)) in sequence.iter().enumerate() {
+            let s = scene(
+                mesh.clone(),
+                normals.clone(),
+                camera(DVec3::new(0.3, 0.8, 3.0), DVec3::ZERO, 30.0, 0.5, 20.0),
+            );
+            let o = RenderOptions {
+                rasterizer: Rasterizer::Tiled,
+                ..options(240, 180, shading)
+            };
+            let mut again = Image::filled(1, 1, Rgb8::default());
+            kept.render_into(&s, &o, &mut again).unwrap();
+            let mut fresh = Image::filled(1, 1, Rgb8::default());
+            Renderer::new().render_into(&s, &o, &mut fresh).unwrap();
+            assert!(
+                again == fresh,
+                "{} frame {k}: a kept renderer drew a different image",
+                shading.name()
+            );
+        }
+    }
+}

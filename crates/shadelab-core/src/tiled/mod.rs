@@ -144,10 +144,11 @@ struct Chunk {
 }
 
 /// Distinct (position, normal) pairs of a mesh, rebuilt only when the
-/// mesh's corner lists change.
+/// mesh's geometry or its corner normal indices change.
 #[derive(Debug, Default)]
 struct VertexTable {
-    key_positions: Vec<u32>,
+    /// The geometry it was built for ([`crate::mesh::Mesh::geometry_id`], 0: none).
+    key_geometry: u64,
     key_normals: Vec<u32>,
     /// Per corner, its vertex.
     corner_vertex: Vec<u32>,
@@ -158,12 +159,12 @@ struct VertexTable {
 }
 
 impl VertexTable {
-    fn update(&mut self, corners: &[u32], corner_normals: &[u32], normal_count: usize) {
-        if same(&self.key_positions, corners) && same(&self.key_normals, corner_normals) {
+    fn update(&mut self, mesh: &crate::mesh::Mesh, corner_normals: &[u32], normal_count: usize) {
+        if self.key_geometry == mesh.geometry_id() && same(&self.key_normals, corner_normals) {
             return;
         }
-        self.key_positions.clear();
-        self.key_positions.extend_from_slice(corners);
+        let corners = mesh.corners();
+        self.key_geometry = mesh.geometry_id();
         self.key_normals.clear();
         self.key_normals.extend_from_slice(corner_normals);
         // A vertex per normal index, owned by the first position using it;
@@ -196,23 +197,20 @@ impl VertexTable {
 }
 
 /// Each polygon's unit face normal (`None` when degenerate), recomputed
-/// only when the mesh changes.
+/// only when the mesh's geometry changes.
 #[derive(Debug, Default)]
 struct FaceNormals {
-    key_positions: Vec<Vec3>,
-    key_corners: Vec<u32>,
+    /// The geometry they were computed for ([`crate::mesh::Mesh::geometry_id`], 0: none).
+    key_geometry: u64,
     normals: Vec<Option<Vec3>>,
 }
 
 impl FaceNormals {
     fn update(&mut self, mesh: &crate::mesh::Mesh) {
-        if same(&self.key_positions, mesh.positions()) && same(&self.key_corners, mesh.corners()) {
+        if self.key_geometry == mesh.geometry_id() {
             return;
         }
-        self.key_positions.clear();
-        self.key_positions.extend_from_slice(mesh.positions());
-        self.key_corners.clear();
-        self.key_corners.extend_from_slice(mesh.corners());
+        self.key_geometry = mesh.geometry_id();
         self.normals.resize(mesh.polygon_count(), None);
         self.normals
             .par_chunks_mut(1024)
@@ -229,8 +227,9 @@ impl FaceNormals {
     }
 }
 
-/// `a == b`, compared in parallel: the per-mesh caches are keyed by whole
-/// meshes, checked every frame.
+/// `a == b`, compared in parallel: the vertex table is keyed by the scene's
+/// corner normal indices (which a caller may change between frames without
+/// changing the mesh), checked every frame.
 fn same<T: PartialEq + Sync>(a: &[T], b: &[T]) -> bool {
     const CHUNK: usize = 1 << 14;
     a.len() == b.len()
@@ -999,7 +998,7 @@ impl TiledRasterizer {
     fn light_vertices(&mut self, scene: &Scene, options: &RenderOptions) -> u64 {
         let normals = &scene.normals;
         self.vertices
-            .update(scene.mesh.corners(), &normals.corner, normals.normals.len());
+            .update(&scene.mesh, &normals.corner, normals.normals.len());
         let terms = if options.gouraud_specular {
             Terms::Full
         } else {
