@@ -47,7 +47,7 @@ mod shade;
 use std::collections::HashMap;
 use std::sync::{Mutex, MutexGuard};
 
-use glam::{Vec3, Vec4};
+use glam::{Mat4, Vec3};
 use rayon::prelude::*;
 
 use self::band::{band_rows, Band, Pass};
@@ -70,9 +70,9 @@ const PREFETCH_AHEAD: usize = 8;
 pub(crate) struct TiledRasterizer {
     simd: SimdLevel,
     /// Per mesh position: its snapped window position (16 bytes, so that
-    /// setup's random accesses stay in cache) and its clip-space position.
+    /// setup's random accesses stay in cache). Clip-space positions are not
+    /// kept: the few polygons that need clipping compute theirs again.
     projected: Vec<Projected>,
-    clip: Vec<Vec4>,
     vertices: VertexTable,
     faces: FaceNormals,
     /// Gouraud colours per distinct vertex, front and (culling off) back.
@@ -243,7 +243,7 @@ struct Frame<'a> {
     scene: &'a Scene,
     options: &'a RenderOptions,
     projected: &'a [Projected],
-    clip: &'a [Vec4],
+    view_projection: Mat4,
     corner_vertex: &'a [u32],
     faces: &'a [Option<Vec3>],
     phong: &'a PhongShader,
@@ -347,7 +347,9 @@ impl Chunk {
         self.input.clear();
         for c in range {
             self.input.push(ClipVertex {
-                clip: frame.clip[mesh.corners()[c] as usize],
+                // As the vertex stage computed it.
+                clip: frame.view_projection
+                    * mesh.positions()[mesh.corners()[c] as usize].extend(1.0),
                 attrs: frame.corner_attrs(c, back),
             });
         }
@@ -797,7 +799,6 @@ impl TiledRasterizer {
                 SimdLevel::Portable
             },
             projected: Vec::new(),
-            clip: Vec::new(),
             vertices: VertexTable::default(),
             faces: FaceNormals::default(),
             lit: Vec::new(),
@@ -907,15 +908,12 @@ impl TiledRasterizer {
 
         let positions = mesh.positions();
         self.projected.resize(positions.len(), Projected::default());
-        self.clip.resize(positions.len(), Vec4::ZERO);
         self.projected
             .par_chunks_mut(4096)
-            .zip(self.clip.par_chunks_mut(4096))
             .zip(positions.par_chunks(4096))
-            .for_each(|((out, clips), points)| {
-                for ((o, c), p) in out.iter_mut().zip(clips).zip(points) {
+            .for_each(|(out, points)| {
+                for (o, p) in out.iter_mut().zip(points) {
                     let clip = view_projection * p.extend(1.0);
-                    *c = clip;
                     *o = if clip.is_finite() && is_inside(clip, guard) {
                         let w = to_window(&ClipVertex { clip, attrs: [] }, width, height);
                         Projected {
@@ -950,7 +948,7 @@ impl TiledRasterizer {
             scene,
             options,
             projected: &self.projected,
-            clip: &self.clip,
+            view_projection,
             corner_vertex: &self.vertices.corner_vertex,
             faces: &self.faces.normals,
             phong: &self.phong,
