@@ -23,6 +23,7 @@
 use std::collections::HashMap;
 
 use glam::{Mat4, Vec3, Vec4};
+use rayon::prelude::*;
 
 use crate::camera::{Camera, CameraError};
 use crate::clip::{clip_polygon, ClipVertex};
@@ -456,9 +457,15 @@ pub(crate) fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), Ren
         });
     }
     scene.camera.validate()?;
-    // A maximum over all corners (no early exit) so the loop vectorizes:
-    // it runs every frame over every corner.
-    let largest = scene.normals.corner.iter().fold(0, |m, &i| m.max(i));
+    // A maximum over all corners (no early exit, so the loop vectorizes),
+    // in parallel: it runs every frame over every corner.
+    let largest = scene
+        .normals
+        .corner
+        .par_chunks(1 << 15)
+        .map(|chunk| chunk.iter().fold(0, |m, &i| m.max(i)))
+        .max()
+        .unwrap_or(0);
     if scene.normals.corner.len() != scene.mesh.corners().len()
         || (!scene.normals.corner.is_empty() && largest as usize >= scene.normals.normals.len())
     {
