@@ -156,26 +156,34 @@ impl Band {
         let (far, background) = (Vf::splat(s, 1.0), Vi::splat(s, background));
         let mut bg = [0; 8];
         s.i_store(background.0, &mut bg);
-        let drawn_blocks = self.columns.start / 8..self.columns.end / 8;
+        // Whole blocks of 8 pixels: background, then the drawn ones, then
+        // background; the last `width % 8` pixels one by one.
+        let whole = width / 8;
+        let drawn = (self.columns.start / 8).min(whole)..(self.columns.end / 8).min(whole);
         for (row, pixels) in out.chunks_mut(width).enumerate() {
             let start = row * self.stride;
             let bytes: &mut [u8] = bytemuck::cast_slice_mut(pixels);
-            let mut blocks = bytes.chunks_exact_mut(24);
-            for (k, block) in blocks.by_ref().enumerate() {
-                let block: &mut [u8; 24] = block.try_into().unwrap();
-                if !drawn_blocks.contains(&k) {
-                    s.i_store_rgb(background.0, block);
-                    continue;
-                }
-                let at = start + 8 * k;
-                let depth = Vf::load(s, (&self.depth[at..at + 8]).try_into().unwrap());
+            let (blocks, rest) = bytes.split_at_mut(24 * whole);
+            let (left, blocks) = blocks.split_at_mut(24 * drawn.start);
+            let (middle, right) = blocks.split_at_mut(24 * drawn.len());
+            for block in left.chunks_exact_mut(24).chain(right.chunks_exact_mut(24)) {
+                s.i_store_rgb(background.0, block.try_into().unwrap());
+            }
+            let pixels = start + 8 * drawn.start..start + 8 * drawn.end;
+            let depths = self.depth[pixels.clone()].chunks_exact(8);
+            let colors = self.color[pixels].chunks_exact(8);
+            for ((block, depth), color) in middle.chunks_exact_mut(24).zip(depths).zip(colors) {
+                let depth = Vf::load(s, depth.try_into().unwrap());
                 let drawn = depth.lt(far);
                 covered += drawn.mask_bits().count_ones();
-                let color = Vi(s.i_load((&self.color[at..at + 8]).try_into().unwrap()), s);
-                s.i_store_rgb(Vi::select(drawn, color, background).0, block);
+                let color = Vi(s.i_load(color.try_into().unwrap()), s);
+                s.i_store_rgb(
+                    Vi::select(drawn, color, background).0,
+                    block.try_into().unwrap(),
+                );
             }
-            let done = width - width % 8;
-            for (j, dst) in blocks.into_remainder().chunks_exact_mut(3).enumerate() {
+            let done = 8 * whole;
+            for (j, dst) in rest.chunks_exact_mut(3).enumerate() {
                 let at = start + done + j;
                 let c = if self.columns.contains(&(done + j)) && self.depth[at] < 1.0 {
                     covered += 1;
