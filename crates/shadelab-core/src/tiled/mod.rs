@@ -47,7 +47,7 @@ mod shade;
 use std::collections::HashMap;
 use std::sync::{Mutex, MutexGuard};
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
 use self::band::{band_rows, Band, Pass};
@@ -347,9 +347,10 @@ impl Chunk {
         self.input.clear();
         for c in range {
             self.input.push(ClipVertex {
-                // As the vertex stage computed it.
-                clip: frame.view_projection
-                    * mesh.positions()[mesh.corners()[c] as usize].extend(1.0),
+                clip: clip_position(
+                    frame.view_projection,
+                    mesh.positions()[mesh.corners()[c] as usize],
+                ),
                 attrs: frame.corner_attrs(c, back),
             });
         }
@@ -677,6 +678,13 @@ impl Kernel for FlatKernel<'_> {
     }
 }
 
+/// A position in clip space: one expression for the vertex stage and for
+/// the polygons that clipping recomputes, so both see the same values.
+#[inline(always)]
+fn clip_position(view_projection: Mat4, p: Vec3) -> Vec4 {
+    view_projection * p.extend(1.0)
+}
+
 /// Twice the signed area of a polygon's projected, snapped positions
 /// (as [`signed_area_ccw`] of its window polygon).
 fn window_area(projected: &[Projected], corners: &[u32]) -> i128 {
@@ -913,7 +921,7 @@ impl TiledRasterizer {
             .zip(positions.par_chunks(4096))
             .for_each(|(out, points)| {
                 for (o, p) in out.iter_mut().zip(points) {
-                    let clip = view_projection * p.extend(1.0);
+                    let clip = clip_position(view_projection, *p);
                     *o = if clip.is_finite() && is_inside(clip, guard) {
                         let w = to_window(&ClipVertex { clip, attrs: [] }, width, height);
                         Projected {
