@@ -290,6 +290,16 @@ impl Band {
         // (and so maybe past the image) in the last block.
         let right_start = Vi::splat(s, t.x1 - 1 - first_block) - lane_index;
         let (right_step, minus_one) = (Vi::splat(s, 8), Vi::splat(s, -1));
+        let steps = (block_step, row_step, right_step);
+        match block_count {
+            1 => {
+                return self.walk_narrow::<S, Sh, 1>(s, f, rows, band_y0, row_e, right_start, steps)
+            }
+            2 => {
+                return self.walk_narrow::<S, Sh, 2>(s, f, rows, band_y0, row_e, right_start, steps)
+            }
+            _ => {}
+        }
         for y in rows {
             let row_start = (y as u32 - band_y0) as usize * self.stride;
             let row = f.row(y);
@@ -302,6 +312,47 @@ impl Band {
                 right = right - right_step;
                 if inside.mask_bits() != 0 {
                     let x = first_block + block * 8;
+                    self.block(s, f, inside, row_start + x as usize, x, &row);
+                }
+            }
+            for i in 0..3 {
+                row_e[i] = row_e[i] + row_step[i];
+            }
+        }
+    }
+
+    /// [`Band::walk_blocks`] for boxes `BLOCKS` blocks wide (one or two:
+    /// most triangles of a dense mesh seen small), with the blocks of a row
+    /// unrolled: no loop over blocks, whose exit would often be
+    /// mispredicted, and the row's planes evaluated only once a block of
+    /// the row has a lane inside.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn walk_narrow<S: Simd, Sh: Shader, const BLOCKS: usize>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        rows: std::ops::Range<i32>,
+        band_y0: u32,
+        mut row_e: [Vi<S>; 3],
+        right_start: Vi<S>,
+        (block_step, row_step, right_step): ([Vi<S>; 3], [Vi<S>; 3], Vi<S>),
+    ) {
+        let first_block = f.t.x0 & !7;
+        let minus_one = Vi::splat(s, -1);
+        for y in rows {
+            let row_start = (y as u32 - band_y0) as usize * self.stride;
+            let (mut e, mut right) = (row_e, right_start);
+            let mut row = None;
+            for block in 0..BLOCKS {
+                let inside = (e[0] | e[1] | e[2] | right).gt(minus_one);
+                for i in 0..3 {
+                    e[i] = e[i] + block_step[i];
+                }
+                right = right - right_step;
+                if inside.mask_bits() != 0 {
+                    let x = first_block + block as i32 * 8;
+                    let row = *row.get_or_insert_with(|| f.row(y));
                     self.block(s, f, inside, row_start + x as usize, x, &row);
                 }
             }

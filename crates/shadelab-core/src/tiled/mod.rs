@@ -298,16 +298,33 @@ impl Frame<'_> {
     #[inline(always)]
     fn prefetch<const A: usize>(&self, face: usize) {
         let mesh = &self.scene.mesh;
-        for corner in mesh.corner_range(face) {
-            let vertex = mesh.corners()[corner] as usize;
-            prefetch(&self.projected[vertex]);
-            if A == 3 {
-                prefetch(&self.lit[self.corner_vertex[corner] as usize]);
-            } else if A == 6 {
-                let normals = &self.scene.normals;
-                prefetch(&normals.normals[normals.corner[corner] as usize]);
-                prefetch(&mesh.positions()[vertex]);
-            }
+        let range = mesh.corner_range(face);
+        if range.len() == 3 {
+            // Triangles, nearly all polygons: straight-line code, no loop to
+            // leave (its exit would be mispredicted every few polygons).
+            let first = range.start;
+            self.prefetch_corner::<A>(first);
+            self.prefetch_corner::<A>(first + 1);
+            self.prefetch_corner::<A>(first + 2);
+            return;
+        }
+        for corner in range {
+            self.prefetch_corner::<A>(corner);
+        }
+    }
+
+    /// [`Frame::prefetch`] of one corner.
+    #[inline(always)]
+    fn prefetch_corner<const A: usize>(&self, corner: usize) {
+        let mesh = &self.scene.mesh;
+        let vertex = mesh.corners()[corner] as usize;
+        prefetch(&self.projected[vertex]);
+        if A == 3 {
+            prefetch(&self.lit[self.corner_vertex[corner] as usize]);
+        } else if A == 6 {
+            let normals = &self.scene.normals;
+            prefetch(&normals.normals[normals.corner[corner] as usize]);
+            prefetch(&mesh.positions()[vertex]);
         }
     }
 

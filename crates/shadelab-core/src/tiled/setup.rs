@@ -17,7 +17,7 @@
 //!   relative to the triangle's first pixel, so per-pixel offsets stay small
 //!   and f32 keeps its precision whatever the triangle's position.
 
-use crate::raster::{Interpolation, ScreenVertex, SUBPIXEL_HALF, SUBPIXEL_ONE};
+use crate::raster::{Interpolation, ScreenVertex, SUBPIXEL_BITS, SUBPIXEL_HALF, SUBPIXEL_ONE};
 
 /// The most planes a triangle has: depth, 1/w and six attributes.
 pub(crate) const PLANES: usize = 8;
@@ -73,8 +73,9 @@ pub(crate) struct Triangle {
 /// (snapped units), clipped to `0..size`.
 #[inline(always)]
 fn centres(min: i64, max: i64, size: u32) -> (i64, i64) {
-    let first = (min - SUBPIXEL_HALF + SUBPIXEL_ONE - 1).div_euclid(SUBPIXEL_ONE);
-    let last = (max - SUBPIXEL_HALF).div_euclid(SUBPIXEL_ONE);
+    // Floor divisions by a power of two: arithmetic shifts.
+    let first = (min - SUBPIXEL_HALF + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
+    let last = (max - SUBPIXEL_HALF) >> SUBPIXEL_BITS;
     (first.max(0), (last + 1).min(i64::from(size)))
 }
 
@@ -96,7 +97,8 @@ impl Triangle {
         for i in 0..3 {
             let j = (i + 1) % 3;
             let (ai, bi) = (y[j] - y[i], x[i] - x[j]);
-            let top_left = ai > 0 || (ai == 0 && bi > 0);
+            // Without branches: an edge's direction is a coin toss.
+            let top_left = (ai > 0) | ((ai == 0) & (bi > 0));
             c[i] = -(ai * x[i] + bi * y[i]) - i64::from(!top_left);
             a[i] = ai as i32;
             b[i] = bi as i32;
@@ -141,18 +143,22 @@ impl Triangle {
         if w > 2 || h > 2 {
             return false;
         }
-        for y in self.y0..self.y1 {
-            let ys = i64::from(y) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-            for x in self.x0..self.x1 {
-                let xs = i64::from(x) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-                if (0..3)
-                    .all(|i| i64::from(self.a[i]) * xs + i64::from(self.b[i]) * ys + self.c[i] >= 0)
-                {
-                    return false;
-                }
-            }
+        // The (up to) four centres tested at once, without branches: which
+        // of them is covered is a coin toss from one triangle to the next.
+        let xs = i64::from(self.x0) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let ys = i64::from(self.y0) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let mut inside = [true; 4];
+        for i in 0..3 {
+            let (a, b) = (i64::from(self.a[i]), i64::from(self.b[i]));
+            let e = a * xs + b * ys + self.c[i];
+            let (right, down) = (a * SUBPIXEL_ONE, b * SUBPIXEL_ONE);
+            inside[0] &= e >= 0;
+            inside[1] &= e + right >= 0;
+            inside[2] &= e + down >= 0;
+            inside[3] &= e + right + down >= 0;
         }
-        true
+        let (wide, tall) = (w == 2, h == 2);
+        !(inside[0] | (inside[1] & wide) | (inside[2] & tall) | (inside[3] & wide & tall))
     }
 
     /// The planes of depth and, when `attrs > 0`, of 1/w and the first
