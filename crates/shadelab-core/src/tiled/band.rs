@@ -289,51 +289,29 @@ impl Band {
         // A fourth function, `x1 - 1 - x`, keeps out the lanes past the box
         // (and so maybe past the image) in the last block.
         let right_start = Vi::splat(s, t.x1 - 1 - first_block) - lane_index;
-        let (right_step, minus_one) = (Vi::splat(s, 8), Vi::splat(s, -1));
-        let steps = (block_step, row_step, right_step);
+        let steps = (block_step, row_step, Vi::splat(s, 8));
+        // Boxes one or two blocks wide (most triangles of a dense mesh seen
+        // small) get the blocks of a row unrolled: no loop over blocks,
+        // whose exit would often be mispredicted.
         match block_count {
-            1 => {
-                return self.walk_narrow::<S, Sh, 1>(s, f, rows, band_y0, row_e, right_start, steps)
-            }
-            2 => {
-                return self.walk_narrow::<S, Sh, 2>(s, f, rows, band_y0, row_e, right_start, steps)
-            }
-            _ => {}
-        }
-        for y in rows {
-            let row_start = (y as u32 - band_y0) as usize * self.stride;
-            let row = f.row(y);
-            let (mut e, mut right) = (row_e, right_start);
-            for block in 0..block_count {
-                let inside = (e[0] | e[1] | e[2] | right).gt(minus_one);
-                for i in 0..3 {
-                    e[i] = e[i] + block_step[i];
-                }
-                right = right - right_step;
-                if inside.mask_bits() != 0 {
-                    let x = first_block + block * 8;
-                    self.block(s, f, inside, row_start + x as usize, x, &row);
-                }
-            }
-            for i in 0..3 {
-                row_e[i] = row_e[i] + row_step[i];
-            }
+            1 => self.walk_rows(s, f, rows, band_y0, 1, row_e, right_start, steps),
+            2 => self.walk_rows(s, f, rows, band_y0, 2, row_e, right_start, steps),
+            blocks => self.walk_rows(s, f, rows, band_y0, blocks, row_e, right_start, steps),
         }
     }
 
-    /// [`Band::walk_blocks`] for boxes `BLOCKS` blocks wide (one or two:
-    /// most triangles of a dense mesh seen small), with the blocks of a row
-    /// unrolled: no loop over blocks, whose exit would often be
-    /// mispredicted, and the row's planes evaluated only once a block of
-    /// the row has a lane inside.
+    /// [`Band::walk_blocks`]'s rows, `blocks` blocks each, from the edge
+    /// functions at the first block of the first row; a row's planes are
+    /// evaluated only once one of its blocks has a lane inside.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn walk_narrow<S: Simd, Sh: Shader, const BLOCKS: usize>(
+    fn walk_rows<S: Simd, Sh: Shader>(
         &mut self,
         s: S,
         f: &Fill<'_, S, Sh>,
         rows: std::ops::Range<i32>,
         band_y0: u32,
+        blocks: i32,
         mut row_e: [Vi<S>; 3],
         right_start: Vi<S>,
         (block_step, row_step, right_step): ([Vi<S>; 3], [Vi<S>; 3], Vi<S>),
@@ -344,14 +322,14 @@ impl Band {
             let row_start = (y as u32 - band_y0) as usize * self.stride;
             let (mut e, mut right) = (row_e, right_start);
             let mut row = None;
-            for block in 0..BLOCKS {
+            for block in 0..blocks {
                 let inside = (e[0] | e[1] | e[2] | right).gt(minus_one);
                 for i in 0..3 {
                     e[i] = e[i] + block_step[i];
                 }
                 right = right - right_step;
                 if inside.mask_bits() != 0 {
-                    let x = first_block + block as i32 * 8;
+                    let x = first_block + block * 8;
                     let row = *row.get_or_insert_with(|| f.row(y));
                     self.block(s, f, inside, row_start + x as usize, x, &row);
                 }
