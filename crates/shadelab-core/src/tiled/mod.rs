@@ -940,34 +940,43 @@ impl TiledRasterizer {
         self.phong.update(lighting);
 
         let positions = mesh.positions();
-        self.projected.resize(positions.len(), Projected::default());
-        self.projected
-            .par_chunks_mut(4096)
-            .zip(positions.par_chunks(4096))
-            .for_each(|(out, points)| {
-                for (o, p) in out.iter_mut().zip(points) {
-                    let clip = clip_position(view_projection, *p);
-                    *o = if clip.is_finite() && is_inside(clip, guard) {
-                        let w = to_window(&ClipVertex { clip, attrs: [] }, width, height);
-                        Projected {
-                            x: w.x as i32,
-                            y: w.y as i32,
-                            depth: w.depth,
-                            inv_w: w.inv_w,
-                        }
-                    } else {
-                        Projected {
-                            x: Projected::OUTSIDE,
-                            ..Projected::default()
-                        }
-                    };
-                }
-            });
-
-        let mut evaluations = 0;
-        if options.shading == Shading::Gouraud {
-            evaluations = self.light_vertices(scene, options);
-        }
+        let projected = &mut self.projected;
+        // The positions' projection and Gouraud's vertex lighting are
+        // independent: run together, neither waits for the other's last task.
+        let project = || {
+            projected.resize(positions.len(), Projected::default());
+            projected
+                .par_chunks_mut(4096)
+                .zip(positions.par_chunks(4096))
+                .for_each(|(out, points)| {
+                    for (o, p) in out.iter_mut().zip(points) {
+                        let clip = clip_position(view_projection, *p);
+                        *o = if clip.is_finite() && is_inside(clip, guard) {
+                            let w = to_window(&ClipVertex { clip, attrs: [] }, width, height);
+                            Projected {
+                                x: w.x as i32,
+                                y: w.y as i32,
+                                depth: w.depth,
+                                inv_w: w.inv_w,
+                            }
+                        } else {
+                            Projected {
+                                x: Projected::OUTSIDE,
+                                ..Projected::default()
+                            }
+                        };
+                    }
+                });
+        };
+        let (vertices, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
+        let (phong, simd) = (&self.phong, self.simd);
+        let light = || match options.shading {
+            Shading::Gouraud => {
+                light_vertices(vertices, lit, lit_back, phong, simd, scene, options)
+            }
+            _ => 0,
+        };
+        let ((), evaluations) = rayon::join(project, light);
 
         self.faces.update(mesh);
         let bands = height.div_ceil(BAND_ROWS) as usize;
@@ -1023,46 +1032,52 @@ impl TiledRasterizer {
         }
         stats
     }
+}
 
-    /// Gouraud's per-vertex lighting, with the frame's lighting already in
-    /// `self.phong`; returns the number of evaluations.
-    fn light_vertices(&mut self, scene: &Scene, options: &RenderOptions) -> u64 {
-        let normals = &scene.normals;
-        self.vertices
-            .update(&scene.mesh, &normals.corner, normals.normals.len());
-        let terms = if options.gouraud_specular {
-            Terms::Full
-        } else {
-            Terms::AmbientDiffuse
-        };
-        let table = &self.vertices;
-        let positions = scene.mesh.positions();
-        let shader = &self.phong;
-        let simd = self.simd;
-        let light = |out: &mut Vec<[f32; 3]>, sign: f32| {
-            out.resize(table.position.len(), [0.0; 3]);
-            out.par_chunks_mut(1024)
-                .enumerate()
-                .for_each(|(k, colors)| {
-                    let kernel = VertexKernel {
-                        first: k * 1024,
-                        colors,
-                        table,
-                        positions,
-                        normals: &normals.normals,
-                        sign,
-                        shader,
-                        specular: terms == Terms::Full,
-                    };
-                    dispatch(simd, kernel);
-                });
-        };
-        light(&mut self.lit, 1.0);
-        if options.cull_backfaces {
-            table.used
-        } else {
-            light(&mut self.lit_back, -1.0);
-            2 * table.used
-        }
+/// Gouraud's per-vertex lighting into `lit` (and `lit_back` for back faces
+/// drawn), with the frame's lighting already in `shader`; returns the
+/// number of evaluations.
+fn light_vertices(
+    vertices: &mut VertexTable,
+    lit: &mut Vec<[f32; 3]>,
+    lit_back: &mut Vec<[f32; 3]>,
+    shader: &PhongShader,
+    simd: SimdLevel,
+    scene: &Scene,
+    options: &RenderOptions,
+) -> u64 {
+    let normals = &scene.normals;
+    vertices.update(&scene.mesh, &normals.corner, normals.normals.len());
+    let terms = if options.gouraud_specular {
+        Terms::Full
+    } else {
+        Terms::AmbientDiffuse
+    };
+    let table = &*vertices;
+    let positions = scene.mesh.positions();
+    let light = |out: &mut Vec<[f32; 3]>, sign: f32| {
+        out.resize(table.position.len(), [0.0; 3]);
+        out.par_chunks_mut(1024)
+            .enumerate()
+            .for_each(|(k, colors)| {
+                let kernel = VertexKernel {
+                    first: k * 1024,
+                    colors,
+                    table,
+                    positions,
+                    normals: &normals.normals,
+                    sign,
+                    shader,
+                    specular: terms == Terms::Full,
+                };
+                dispatch(simd, kernel);
+            });
+    };
+    light(lit, 1.0);
+    if options.cull_backfaces {
+        table.used
+    } else {
+        light(lit_back, -1.0);
+        2 * table.used
     }
 }
