@@ -237,8 +237,11 @@ impl Band {
             return;
         }
         let mut dx = [Vf::splat(s, 0.0); 2 + MAX_ATTRS];
+        let (mut origin, mut dy) = ([0f32; 2 + MAX_ATTRS], [0f32; 2 + MAX_ATTRS]);
         for j in 0..plane_count(Sh::ATTRS) {
             dx[j] = Vf::splat(s, planes[j].dx);
+            origin[j] = planes[j].at_origin;
+            dy[j] = planes[j].dy;
         }
         let fill = Fill {
             t,
@@ -248,11 +251,18 @@ impl Band {
             interpolation,
             pass,
             dx,
+            origin: Vf::load(s, &origin),
+            dy: Vf::load(s, &dy),
             lanes: Vf::lanes(s),
         };
-        match t.walk {
-            Walk::Blocks => self.walk_blocks(s, &fill, rows, band_y0),
-            Walk::Spans => self.walk_spans(s, &fill, rows, band_y0),
+        // Nearly every triangle is drawn once per pixel in a shading pass:
+        // its blocks skip the two tests for the other cases.
+        let plain = t.once == 0 && pass == Pass::Shade;
+        match (t.walk, plain) {
+            (Walk::Blocks, true) => self.walk_blocks::<S, Sh, true>(s, &fill, rows, band_y0),
+            (Walk::Blocks, false) => self.walk_blocks::<S, Sh, false>(s, &fill, rows, band_y0),
+            (Walk::Spans, true) => self.walk_spans::<S, Sh, true>(s, &fill, rows, band_y0),
+            (Walk::Spans, false) => self.walk_spans::<S, Sh, false>(s, &fill, rows, band_y0),
         }
         if Sh::DEFERRED && self.pending.len > 0 {
             self.interpolate_pending(s, &fill);
@@ -262,7 +272,7 @@ impl Band {
     /// Blocks of 8 pixels along each row of the bounding box, with the edge
     /// functions in `i32` lanes: one add per edge per block, no multiply.
     #[inline(always)]
-    fn walk_blocks<S: Simd, Sh: Shader>(
+    fn walk_blocks<S: Simd, Sh: Shader, const PLAIN: bool>(
         &mut self,
         s: S,
         f: &Fill<'_, S, Sh>,
@@ -294,9 +304,18 @@ impl Band {
         // small) get the blocks of a row unrolled: no loop over blocks,
         // whose exit would often be mispredicted.
         match block_count {
-            1 => self.walk_rows(s, f, rows, band_y0, 1, row_e, right_start, steps),
-            2 => self.walk_rows(s, f, rows, band_y0, 2, row_e, right_start, steps),
-            blocks => self.walk_rows(s, f, rows, band_y0, blocks, row_e, right_start, steps),
+            1 => self.walk_rows::<S, Sh, PLAIN>(s, f, rows, band_y0, 1, row_e, right_start, steps),
+            2 => self.walk_rows::<S, Sh, PLAIN>(s, f, rows, band_y0, 2, row_e, right_start, steps),
+            blocks => self.walk_rows::<S, Sh, PLAIN>(
+                s,
+                f,
+                rows,
+                band_y0,
+                blocks,
+                row_e,
+                right_start,
+                steps,
+            ),
         }
     }
 
@@ -305,7 +324,7 @@ impl Band {
     /// evaluated only once one of its blocks has a lane inside.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn walk_rows<S: Simd, Sh: Shader>(
+    fn walk_rows<S: Simd, Sh: Shader, const PLAIN: bool>(
         &mut self,
         s: S,
         f: &Fill<'_, S, Sh>,
@@ -331,7 +350,7 @@ impl Band {
                 if inside.mask_bits() != 0 {
                     let x = first_block + block * 8;
                     let row = *row.get_or_insert_with(|| f.row(y));
-                    self.block(s, f, inside, row_start + x as usize, x, &row);
+                    self.block::<S, Sh, PLAIN>(s, f, inside, row_start + x as usize, x, &row);
                 }
             }
             for i in 0..3 {
@@ -343,7 +362,7 @@ impl Band {
     /// Each row's covered span `[left, right)`, found exactly per edge, then
     /// filled in blocks of 8 with no edge arithmetic per pixel.
     #[inline(always)]
-    fn walk_spans<S: Simd, Sh: Shader>(
+    fn walk_spans<S: Simd, Sh: Shader, const PLAIN: bool>(
         &mut self,
         s: S,
         f: &Fill<'_, S, Sh>,
@@ -363,16 +382,17 @@ impl Band {
             while x < right {
                 let lanes = lane_index + Vi::splat(s, x);
                 let inside = lanes.gt(from) & to.gt(lanes);
-                self.block(s, f, inside, row_start + x as usize, x, &row);
+                self.block::<S, Sh, PLAIN>(s, f, inside, row_start + x as usize, x, &row);
                 x += 8;
             }
         }
     }
 
     /// Depth-tests, shades and writes the lanes of `inside` in the block at
-    /// column `x` (buffer index `at`) of `row`.
+    /// column `x` (buffer index `at`) of `row`. `PLAIN`: a shading pass of a
+    /// triangle that is not part of a self-crossing polygon.
     #[inline(always)]
-    fn block<S: Simd, Sh: Shader>(
+    fn block<S: Simd, Sh: Shader, const PLAIN: bool>(
         &mut self,
         s: S,
         f: &Fill<'_, S, Sh>,
@@ -382,11 +402,11 @@ impl Band {
         row: &Row,
     ) {
         let mut inside = inside;
-        if f.t.once != 0 {
+        if !PLAIN && f.t.once != 0 {
             let bits = self.once_per_pixel(inside.mask_bits(), at, f.t.once);
             inside = Vi::from_mask_bits(s, bits);
         }
-        if f.pass == Pass::Count {
+        if !PLAIN && f.pass == Pass::Count {
             let bits = inside.mask_bits();
             for (i, count) in self.counts[at..at + 8].iter_mut().enumerate() {
                 *count += (bits >> i) & 1;
@@ -623,6 +643,9 @@ struct Fill<'a, S: Simd, Sh: Shader> {
     pass: Pass,
     /// Each plane's step per pixel along x, in all lanes.
     dx: [Vf<S>; 2 + MAX_ATTRS],
+    /// Plane `j`'s value at the triangle's first pixel and step per row, in lane `j`.
+    origin: Vf<S>,
+    dy: Vf<S>,
     /// 0, 1, … 7.
     lanes: Vf<S>,
 }
@@ -631,20 +654,16 @@ impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
     /// Row `y` (see [`Row`]).
     #[inline(always)]
     fn row(&self, y: i32) -> Row {
+        if !Sh::DEFERRED {
+            return self.row_all(y);
+        }
         let dy = (y - self.t.y0) as f32;
         let mut values = [0f32; 2 + MAX_ATTRS];
-        let eager = if Sh::DEFERRED {
-            1
-        } else {
-            plane_count(Sh::ATTRS)
-        };
-        for j in 0..eager {
-            values[j] = self.plane_at_row(j, dy);
-        }
+        values[0] = self.plane_at_row(0, dy);
         Row {
             dy,
             values,
-            all: !Sh::DEFERRED,
+            all: false,
         }
     }
 
@@ -653,9 +672,9 @@ impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
     fn row_all(&self, y: i32) -> Row {
         let dy = (y - self.t.y0) as f32;
         let mut values = [0f32; 2 + MAX_ATTRS];
-        for j in 0..plane_count(Sh::ATTRS) {
-            values[j] = self.plane_at_row(j, dy);
-        }
+        // Every plane at once, with the operations of `plane_at_row` (a
+        // product, then a sum: the same values).
+        (self.origin + self.dy * dy).store(&mut values);
         Row {
             dy,
             values,
