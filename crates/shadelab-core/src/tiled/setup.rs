@@ -69,6 +69,15 @@ pub(crate) struct Triangle {
     pub once: u32,
 }
 
+/// Snapped extents (in x and in y) below this many units, 64 pixels, keep
+/// every edge function within `i32` over the walked box, with no need to
+/// check (`Triangle::fits_i32`): with `W`, `H` the extents, `|a| ≤ H` and
+/// `|b| ≤ W`, and the walk's sample points lie within `W + 23` pixels in x
+/// (the box rounded out to blocks, one block stepped past it) and `H + 2`
+/// rows in y of every vertex, so `|E| ≤ 2·H·W + 256·(23·H + 2·W) + 1`,
+/// below 2^30 for `W, H < 2^14`.
+const SMALL_EXTENT: i64 = 1 << 14;
+
 /// The pixel range `first..last + 1` whose centres lie within `min..=max`
 /// (snapped units), clipped to `0..size`.
 #[inline(always)]
@@ -85,11 +94,13 @@ impl Triangle {
     /// centre of the image lies within its bounding box.
     #[inline(always)]
     pub fn edges(x: [i64; 3], y: [i64; 3], width: u32, height: u32) -> Option<Triangle> {
-        let (y0, y1) = centres(y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]), height);
+        let (y_min, y_max) = (y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]));
+        let (y0, y1) = centres(y_min, y_max, height);
         if y0 >= y1 {
             return None;
         }
-        let (x0, x1) = centres(x[0].min(x[1]).min(x[2]), x[0].max(x[1]).max(x[2]), width);
+        let (x_min, x_max) = (x[0].min(x[1]).min(x[2]), x[0].max(x[1]).max(x[2]));
+        let (x0, x1) = centres(x_min, x_max, width);
         if x0 >= x1 {
             return None;
         }
@@ -103,21 +114,8 @@ impl Triangle {
             a[i] = ai as i32;
             b[i] = bi as i32;
         }
-        // The edge functions' extremes over the block-aligned box are at its corners.
-        let bx0 = (x0 & !7) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-        let bx1 = (((x1 + 7) & !7) - 1) * SUBPIXEL_ONE + SUBPIXEL_HALF;
-        let (by0, by1) = (
-            y0 * SUBPIXEL_ONE + SUBPIXEL_HALF,
-            (y1 - 1) * SUBPIXEL_ONE + SUBPIXEL_HALF,
-        );
-        let fits = (0..3).all(|i| {
-            let (a, b) = (i64::from(a[i]), i64::from(b[i]));
-            let e = a * bx0 + b * by0 + c[i];
-            // One more block and one more row are stepped past the box.
-            let reach = a.abs() * (bx1 - bx0 + 16 * SUBPIXEL_ONE)
-                + b.abs() * (by1 - by0 + 2 * SUBPIXEL_ONE);
-            e.abs() + reach < i64::from(i32::MAX)
-        });
+        let small = x_max - x_min < SMALL_EXTENT && y_max - y_min < SMALL_EXTENT;
+        let fits = small || Triangle::fits_i32(&a, &b, &c, (x0, y0, x1, y1));
         Some(Triangle {
             a,
             b,
@@ -130,6 +128,32 @@ impl Triangle {
             color: 0,
             flip: 1.0,
             once: 0,
+        })
+    }
+
+    /// Whether the edge functions `a·x + b·y + c` stay within `i32` over
+    /// the pixel box `(x0, y0, x1, y1)` rounded out to whole blocks, one
+    /// more block and one more row included (the walk steps that far).
+    fn fits_i32(
+        a: &[i32; 3],
+        b: &[i32; 3],
+        c: &[i64; 3],
+        (x0, y0, x1, y1): (i64, i64, i64, i64),
+    ) -> bool {
+        // The edge functions' extremes over the block-aligned box are at its corners.
+        let bx0 = (x0 & !7) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let bx1 = (((x1 + 7) & !7) - 1) * SUBPIXEL_ONE + SUBPIXEL_HALF;
+        let (by0, by1) = (
+            y0 * SUBPIXEL_ONE + SUBPIXEL_HALF,
+            (y1 - 1) * SUBPIXEL_ONE + SUBPIXEL_HALF,
+        );
+        (0..3).all(|i| {
+            let (a, b) = (i64::from(a[i]), i64::from(b[i]));
+            let e = a * bx0 + b * by0 + c[i];
+            // One more block and one more row are stepped past the box.
+            let reach = a.abs() * (bx1 - bx0 + 16 * SUBPIXEL_ONE)
+                + b.abs() * (by1 - by0 + 2 * SUBPIXEL_ONE);
+            e.abs() + reach < i64::from(i32::MAX)
         })
     }
 
@@ -309,6 +333,33 @@ mod tests {
             skipped > 0 && skipped * 10 >= empty * 7,
             "{skipped} of {empty}"
         );
+    }
+
+    #[test]
+    fn small_triangles_fit_i32() {
+        // Triangles just under the small extent, anywhere in a large image,
+        // in every orientation: the exact check agrees with the shortcut.
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = |range: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % range as u64) as i64
+        };
+        for _ in 0..20_000 {
+            let (ox, oy) = (next(1 << 21), next(1 << 21));
+            let mut x = [0; 3].map(|_| ox + next(SMALL_EXTENT));
+            let mut y = [0; 3].map(|_| oy + next(SMALL_EXTENT));
+            if (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]) > 0 {
+                x.swap(1, 2);
+                y.swap(1, 2);
+            }
+            let Some(t) = Triangle::edges(x, y, 1 << 14, 1 << 14) else {
+                continue;
+            };
+            let bounds = (t.x0.into(), t.y0.into(), t.x1.into(), t.y1.into());
+            assert!(Triangle::fits_i32(&t.a, &t.b, &t.c, bounds), "{x:?} {y:?}");
+        }
     }
 
     #[test]
