@@ -256,13 +256,15 @@ impl Band {
             lanes: Vf::lanes(s),
         };
         // Nearly every triangle is drawn once per pixel in a shading pass:
-        // its blocks skip the two tests for the other cases.
+        // its blocks skip the two tests for the other cases. The others
+        // (self-crossing polygons' triangles, counting passes) are rare and
+        // all take spans, exact for any triangle, so that only one more walk
+        // is compiled.
         let plain = t.once == 0 && pass == Pass::Shade;
         match (t.walk, plain) {
-            (Walk::Blocks, true) => self.walk_blocks::<S, Sh, true>(s, &fill, rows, band_y0),
-            (Walk::Blocks, false) => self.walk_blocks::<S, Sh, false>(s, &fill, rows, band_y0),
+            (Walk::Blocks, true) => self.walk_blocks(s, &fill, rows, band_y0),
             (Walk::Spans, true) => self.walk_spans::<S, Sh, true>(s, &fill, rows, band_y0),
-            (Walk::Spans, false) => self.walk_spans::<S, Sh, false>(s, &fill, rows, band_y0),
+            (_, false) => self.walk_spans::<S, Sh, false>(s, &fill, rows, band_y0),
         }
         if Sh::DEFERRED && self.pending.len > 0 {
             self.interpolate_pending(s, &fill);
@@ -270,9 +272,10 @@ impl Band {
     }
 
     /// Blocks of 8 pixels along each row of the bounding box, with the edge
-    /// functions in `i32` lanes: one add per edge per block, no multiply.
+    /// functions in `i32` lanes: one add per edge per block, no multiply (a
+    /// shading pass of a triangle drawn once per pixel, see `draw`).
     #[inline(always)]
-    fn walk_blocks<S: Simd, Sh: Shader, const PLAIN: bool>(
+    fn walk_blocks<S: Simd, Sh: Shader>(
         &mut self,
         s: S,
         f: &Fill<'_, S, Sh>,
@@ -304,18 +307,9 @@ impl Band {
         // small) get the blocks of a row unrolled: no loop over blocks,
         // whose exit would often be mispredicted.
         match block_count {
-            1 => self.walk_rows::<S, Sh, PLAIN>(s, f, rows, band_y0, 1, row_e, right_start, steps),
-            2 => self.walk_rows::<S, Sh, PLAIN>(s, f, rows, band_y0, 2, row_e, right_start, steps),
-            blocks => self.walk_rows::<S, Sh, PLAIN>(
-                s,
-                f,
-                rows,
-                band_y0,
-                blocks,
-                row_e,
-                right_start,
-                steps,
-            ),
+            1 => self.walk_rows(s, f, rows, band_y0, 1, row_e, right_start, steps),
+            2 => self.walk_rows(s, f, rows, band_y0, 2, row_e, right_start, steps),
+            blocks => self.walk_rows(s, f, rows, band_y0, blocks, row_e, right_start, steps),
         }
     }
 
@@ -324,7 +318,7 @@ impl Band {
     /// evaluated only once one of its blocks has a lane inside.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn walk_rows<S: Simd, Sh: Shader, const PLAIN: bool>(
+    fn walk_rows<S: Simd, Sh: Shader>(
         &mut self,
         s: S,
         f: &Fill<'_, S, Sh>,
@@ -350,7 +344,7 @@ impl Band {
                 if inside.mask_bits() != 0 {
                     let x = first_block + block * 8;
                     let row = *row.get_or_insert_with(|| f.row(y));
-                    self.block::<S, Sh, PLAIN>(s, f, inside, row_start + x as usize, x, &row);
+                    self.block::<S, Sh, true>(s, f, inside, row_start + x as usize, x, &row);
                 }
             }
             for i in 0..3 {
