@@ -288,17 +288,21 @@ mod tests {
         assert!((p.at_origin - centre(t.x0, t.y0)).abs() < 1e-2);
     }
 
-    #[test]
-    fn covers_no_centre_agrees_with_the_edge_functions() {
-        // Small random triangles near pixel centres, including vertices and
-        // edges exactly on centres (multiples of 128 snapped units).
-        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = |range: i64| {
+    /// A reproducible generator of numbers in `0..range` (xorshift64).
+    fn xorshift(mut seed: u64) -> impl FnMut(i64) -> i64 {
+        move |range| {
             seed ^= seed << 13;
             seed ^= seed >> 7;
             seed ^= seed << 17;
             (seed % range as u64) as i64
-        };
+        }
+    }
+
+    #[test]
+    fn covers_no_centre_agrees_with_the_edge_functions() {
+        // Small random triangles near pixel centres, including vertices and
+        // edges exactly on centres (multiples of 128 snapped units).
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
         let (mut empty, mut skipped) = (0, 0);
         for _ in 0..20_000 {
             let coarse = next(2) == 0;
@@ -339,13 +343,7 @@ mod tests {
     fn small_triangles_fit_i32() {
         // Triangles just under the small extent, anywhere in a large image,
         // in every orientation: the exact check agrees with the shortcut.
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = |range: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % range as u64) as i64
-        };
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
         for _ in 0..20_000 {
             let (ox, oy) = (next(1 << 21), next(1 << 21));
             let mut x = [0; 3].map(|_| ox + next(SMALL_EXTENT));
