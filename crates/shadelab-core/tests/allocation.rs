@@ -2,7 +2,7 @@
 //! buffer lives in the `Renderer` and is cleared, not dropped. Counted with
 //! dhat's heap profiler in testing mode, over frames of each method on a
 //! one-thread and on a two-thread pool (the pools and the renderers are
-//! made, and warmed up, before counting).
+//! made, their threads started, and warmed up, before counting).
 
 use glam::Vec3;
 use shadelab_core::{
@@ -38,6 +38,11 @@ fn frames_after_the_first_allocate_nothing() {
             .num_threads(threads)
             .build()
             .unwrap();
+        // The pool's threads start in the background and allocate as they
+        // start (their queues, their epoch handles). Running something on
+        // every thread waits until all of them have started, so that only
+        // frames are counted.
+        pool.broadcast(|_| ());
         let mut renderer = Renderer::new();
         let mut image = Image::filled(320, 240, Rgb8::new(0, 0, 0));
         counts.push(pool.install(|| {

@@ -110,6 +110,20 @@ pub(crate) enum Pass {
 }
 
 impl Band {
+    /// Makes room for the buffers of bands `width` pixels wide. Called for
+    /// every thread's band before a frame: which thread draws which band
+    /// varies, and a thread that drew none for many frames would otherwise
+    /// allocate when it first does (a frame after the first must not).
+    pub fn reserve(&mut self, width: u32) {
+        fn room<T>(buffer: &mut Vec<T>, len: usize) {
+            buffer.reserve(len.saturating_sub(buffer.len()));
+        }
+        let len = (width as usize).next_multiple_of(8) * BAND_ROWS as usize;
+        room(&mut self.depth, len);
+        room(&mut self.color, len);
+        room(&mut self.stamp, len);
+    }
+
     /// Prepares the buffers for a frame of `width` pixels per row, whose
     /// triangles' boxes lie within `columns`. Only the blocks of 8 that
     /// hold those columns are cleared, and [`Band::finish`] reads back only

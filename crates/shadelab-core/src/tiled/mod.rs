@@ -983,6 +983,12 @@ impl TiledRasterizer {
         let threads = rayon::current_num_threads().max(1);
         self.bands.resize_with(threads, Mutex::default);
         self.bands.truncate(threads);
+        for band in &mut self.bands {
+            let band = band
+                .get_mut()
+                .unwrap_or_else(|poisoned| poisoned.into_inner());
+            band.reserve(options.width);
+        }
         let chunk_count = (rayon::current_num_threads() * SETUP_CHUNKS_PER_THREAD).max(1);
         self.chunks.resize_with(chunk_count, Chunk::default);
         self.chunks.truncate(chunk_count);
