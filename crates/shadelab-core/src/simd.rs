@@ -173,6 +173,11 @@ pub(crate) trait Simd: Copy + Send + Sync {
     /// As [`Simd::f_compress`], for `i32` lanes.
     fn i_compress(self, v: Self::I, bits: u32) -> Self::I;
 
+    /// Three channels in byte units plus one half (`255·c + 0.5`), each
+    /// truncated and saturated to 0..=255 (NaN to 0, as Rust's `as u8`),
+    /// packed per lane as `r | g << 8 | b << 16`.
+    fn f_to_bytes(self, r: Self::F, g: Self::F, b: Self::F) -> Self::I;
+
     /// The low three bytes of each lane, packed: 8 RGB pixels.
     fn i_store_rgb(self, v: Self::I, dst: &mut [u8; 24]);
 }
@@ -369,6 +374,11 @@ impl Simd for Portable {
     fn i_compress(self, v: [i32; 8], bits: u32) -> [i32; 8] {
         let order = &COMPRESS[bits as usize & 255];
         lanes!(|i| v[order[i] as usize])
+    }
+
+    #[inline(always)]
+    fn f_to_bytes(self, r: [f32; 8], g: [f32; 8], b: [f32; 8]) -> [i32; 8] {
+        lanes!(|i| i32::from(r[i] as u8) | i32::from(g[i] as u8) << 8 | i32::from(b[i] as u8) << 16)
     }
 
     #[inline(always)]
@@ -622,6 +632,30 @@ mod avx2 {
         }
 
         #[inline(always)]
+        fn f_to_bytes(self, r: __m256, g: __m256, b: __m256) -> __m256i {
+            // SAFETY: see the impl.
+            unsafe {
+                // `min(top, v)` keeps NaN (the second operand wins when
+                // either is NaN), which truncates to i32::MIN and so
+                // saturates to 0; values past 255.5 become 255.5, so the
+                // truncation stays within i32.
+                let top = _mm256_set1_ps(255.5);
+                let [r, g, b] = [r, g, b].map(|c| _mm256_cvttps_epi32(_mm256_min_ps(top, c)));
+                // Per 128-bit half, as bytes with saturation: r0..r3 g0..g3
+                // b0..b3 b0..b3 (lanes 4..7 in the upper half), then
+                // gathered per pixel.
+                let rg = _mm256_packs_epi32(r, g);
+                let bb = _mm256_packs_epi32(b, b);
+                let planar = _mm256_packus_epi16(rg, bb);
+                let per_pixel = _mm256_setr_epi8(
+                    0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1, //
+                    0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1,
+                );
+                _mm256_shuffle_epi8(planar, per_pixel)
+            }
+        }
+
+        #[inline(always)]
         fn i_store_rgb(self, v: __m256i, dst: &mut [u8; 24]) {
             // SAFETY: see the impl; the first store writes bytes 0..16, the
             // second and third 12..20 and 20..24, all within `dst`.
@@ -724,6 +758,12 @@ impl<S: Simd> Vf<S> {
     #[inline(always)]
     pub fn bits(self) -> Vi<S> {
         Vi(self.1.f_bits(self.0), self.1)
+    }
+    /// Channels in byte units plus one half to packed colours, see
+    /// [`Simd::f_to_bytes`].
+    #[inline(always)]
+    pub fn to_bytes(r: Self, g: Self, b: Self) -> Vi<S> {
+        Vi(r.1.f_to_bytes(r.0, g.0, b.0), r.1)
     }
 }
 
@@ -982,6 +1022,41 @@ mod tests {
                 (Vi::splat(s, -1) & mask).mask_bits(),
                 above,
             )
+        }
+    }
+
+    struct Bytes([f32; 8]);
+
+    impl Kernel for Bytes {
+        type Output = [i32; 8];
+        #[inline(always)]
+        fn run<S: Simd>(self, s: S) -> [i32; 8] {
+            let v = Vf::load(s, &self.0);
+            let mut out = [0; 8];
+            let packed = Vf::to_bytes(v, v + Vf::splat(s, 1.0), Vf::splat(s, 7.9));
+            s.i_store(packed.0, &mut out);
+            out
+        }
+    }
+
+    #[test]
+    fn to_bytes_truncates_and_saturates() {
+        let v = [0.49, 0.5, 254.99, 255.5, 256.0, -3.0, f32::NAN, 3e9];
+        for level in [SimdLevel::Portable, SimdLevel::detect()] {
+            let got = dispatch(level, Bytes(v));
+            let want = v.map(|r| {
+                let byte = |c: f32| {
+                    if c >= 255.0 {
+                        255
+                    } else if c >= 0.0 {
+                        c as i32
+                    } else {
+                        0
+                    }
+                };
+                byte(r) | byte(r + 1.0) << 8 | 7 << 16
+            });
+            assert_eq!(got, want, "{level:?}");
         }
     }
 

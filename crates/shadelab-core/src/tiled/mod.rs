@@ -83,7 +83,8 @@ pub(crate) struct TiledRasterizer {
     projected: Vec<Projected>,
     vertices: VertexTable,
     faces: FaceNormals,
-    /// Gouraud colours per distinct vertex, front and (culling off) back.
+    /// Gouraud colours per distinct vertex, front and (culling off) back,
+    /// clamped to [0, 1] and kept in byte units ([`shade::byte_units`]).
     lit: Vec<[f32; 3]>,
     lit_back: Vec<[f32; 3]>,
     chunks: Vec<Chunk>,
@@ -647,7 +648,7 @@ impl Kernel for VertexKernel<'_> {
             let mut out = [[0f32; 8]; 3];
             for k in 0..3 {
                 let c = rgb[k].max(Vf::splat(s, 0.0)).min(Vf::splat(s, 1.0));
-                c.store(&mut out[k]);
+                shade::byte_units(c).store(&mut out[k]);
             }
             for (i, color) in colors.iter_mut().enumerate() {
                 *color = [out[0][i], out[1][i], out[2][i]];

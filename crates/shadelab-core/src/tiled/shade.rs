@@ -75,6 +75,15 @@ impl Shader for FlatShader {
     }
 }
 
+/// A vertex colour channel in [0, 1] as Gouraud interpolates it: in byte
+/// units plus one half, `255·c + 0.5`, so that each pixel only truncates
+/// (interpolation commutes with this affine map, so the pixel's value is
+/// `255·c + 0.5` of its interpolated colour `c`, as [`pack`] would round it).
+#[inline(always)]
+pub(crate) fn byte_units<S: Simd>(c: Vf<S>) -> Vf<S> {
+    c * 255.0 + c.splat_like(0.5)
+}
+
 /// Gouraud shading: the vertex colours, interpolated.
 pub(crate) struct GouraudShader;
 
@@ -83,9 +92,11 @@ impl Shader for GouraudShader {
     type Lanes<S: Simd> = ();
     #[inline(always)]
     fn lanes<S: Simd>(&self, _: S) {}
+    /// The interpolated colours are in byte units plus one half (see
+    /// [`byte_units`]): only truncation and saturation are left.
     #[inline(always)]
     fn shade<S: Simd>(&self, _: &(), _: S, _: &Triangle, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        pack(a[0], a[1], a[2])
+        Vf::to_bytes(a[0], a[1], a[2])
     }
 }
 
@@ -307,16 +318,13 @@ fn towards<S: Simd>(s: S, q: Vec3, p: &[Vf<S>; 3]) -> [Vf<S>; 3] {
     ])
 }
 
-/// Colours in [0, 1] (clamped) to packed bytes, rounding as [`crate::Rgb8::from_rgb`].
+/// Colours in [0, 1] (clamped) to packed bytes, rounding as
+/// [`crate::Rgb8::from_rgb`]: `255·c + 0.5` truncated, which for `c` in
+/// [0, 1] is the same arithmetic, and saturates as the clamp would.
 #[inline(always)]
 fn pack<S: Simd>(r: Vf<S>, g: Vf<S>, b: Vf<S>) -> Vi<S> {
-    byte(r) | byte(g).shl(8) | byte(b).shl(16)
-}
-
-/// A channel in [0, 1] (clamped) to 0..=255, rounding half up.
-#[inline(always)]
-fn byte<S: Simd>(c: Vf<S>) -> Vi<S> {
-    (c.max(c.splat_like(0.0)).min(c.splat_like(1.0)) * 255.0 + c.splat_like(0.5)).to_i()
+    let half = r.splat_like(0.5);
+    Vf::to_bytes(r * 255.0 + half, g * 255.0 + half, b * 255.0 + half)
 }
 
 /// Phong shading lit by exactly one point light: the general shader with
