@@ -323,8 +323,7 @@ fn towards<S: Simd>(s: S, q: Vec3, p: &[Vf<S>; 3]) -> [Vf<S>; 3] {
 /// [0, 1] is the same arithmetic, and saturates as the clamp would.
 #[inline(always)]
 fn pack<S: Simd>(r: Vf<S>, g: Vf<S>, b: Vf<S>) -> Vi<S> {
-    let half = r.splat_like(0.5);
-    Vf::to_bytes(r * 255.0 + half, g * 255.0 + half, b * 255.0 + half)
+    Vf::to_bytes(byte_units(r), byte_units(g), byte_units(b))
 }
 
 /// Phong shading lit by exactly one point light: the general shader with
