@@ -3,6 +3,9 @@
 
 use glam::{Mat4, Vec3};
 
+use crate::limits::{MAX_EYE_DISTANCE, MIN_EYE_DISTANCE};
+use crate::text::format_number;
+
 /// Why a camera cannot be used.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -13,15 +16,44 @@ pub enum CameraError {
     /// The eye and the target coincide.
     #[error("camera.eye equals camera.target: the view direction is undefined")]
     EyeAtTarget,
+    /// The eye and the target are apart, but by so little that the view
+    /// direction cannot be computed in `f32` (its squared length vanishes).
+    #[error(
+        "camera.eye and camera.target are {} apart: too close to define a view direction \
+         (at least {} apart)",
+        format_number(*.distance),
+        format_number(MIN_EYE_DISTANCE)
+    )]
+    EyeTooClose {
+        /// How far apart they are.
+        distance: f32,
+    },
+    /// The eye is so far from the target that the view direction's squared
+    /// length overflows `f32`.
+    #[error(
+        "camera.eye and camera.target are {} apart: too far to define a view direction \
+         (at most {} apart)",
+        format_number(*.distance),
+        format_number(MAX_EYE_DISTANCE)
+    )]
+    EyeTooFar {
+        /// How far apart they are.
+        distance: f32,
+    },
     /// `up` is zero or parallel to the view direction.
     #[error("camera.up is zero or parallel to the view direction")]
     BadUp,
     /// The field of view is outside (0, 180) degrees.
-    #[error("camera.fov_y must be strictly between 0 and 180 degrees, got {0}")]
+    #[error(
+        "camera.fov_y must be strictly between 0 and 180 degrees, got {}",
+        format_number(*.0)
+    )]
     FieldOfView(f32),
     /// The clipping planes are not 0 < near < far.
     #[error(
-        "camera.near and camera.far must satisfy 0 < near < far, got near = {near}, far = {far}"
+        "camera.near and camera.far must satisfy 0 < near < far, got near = {}, far = {}",
+        format_number(*.near),
+        format_number(*.far)
     )]
     DepthRange {
         /// Near plane distance.
@@ -111,8 +143,19 @@ impl Camera {
             }
         }
         let forward = self.target - self.eye;
-        if forward.length_squared() == 0.0 || !forward.length_squared().is_normal() {
+        if forward == Vec3::ZERO {
             return Err(CameraError::EyeAtTarget);
+        }
+        if !forward.length_squared().is_normal() {
+            // Too close (or so far that the square overflows): say how far
+            // apart they are, computed without overflow or underflow.
+            let largest = forward.abs().max_element();
+            let distance = largest * (forward / largest).length();
+            return Err(if distance < 1.0 {
+                CameraError::EyeTooClose { distance }
+            } else {
+                CameraError::EyeTooFar { distance }
+            });
         }
         if forward.normalize().cross(self.up).length_squared() < 1e-12 {
             return Err(CameraError::BadUp);

@@ -13,6 +13,7 @@ mod clip;
 mod color;
 mod image;
 mod lighting;
+pub mod limits;
 mod mesh;
 mod models;
 mod normals;
@@ -21,6 +22,7 @@ mod probe;
 pub mod raster;
 mod render;
 mod simd;
+mod text;
 mod tiled;
 
 pub use camera::{Camera, CameraError};
@@ -30,6 +32,7 @@ pub use image::Image;
 pub use lighting::{
     Light, LightKind, LightTerm, Lighting, LightingTerms, Material, Specular, Terms,
 };
+pub use limits::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 pub use mesh::{CornerNormals, Mesh, MeshError};
 pub use models::{builtin_model, builtin_model_info, ModelError, ModelInfo, BUILTIN_MODELS};
 pub use normals::{
@@ -43,6 +46,7 @@ pub use probe::{
 pub use raster::Interpolation;
 pub use render::{
     coverage, render, to_window, Polygons, Rasterizer, RenderError, RenderOptions, RenderStats,
-    Renderer, Scene, Shading, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
+    Renderer, Scene, Shading,
 };
 pub use simd::SimdLevel;
+pub use text::{escape_message, escape_token, format_number, is_unsafe_char};

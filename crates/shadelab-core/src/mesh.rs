@@ -117,19 +117,20 @@ fn fresh_geometry_id() -> u64 {
 
 impl Mesh {
     /// The largest number of polygon corners a mesh may have (2^28), so that
-    /// every index fits comfortably in `u32`.
-    pub const MAX_CORNERS: usize = 1 << 28;
+    /// every index fits comfortably in `u32` ([`crate::limits::MAX_CORNERS`]).
+    pub const MAX_CORNERS: usize = crate::limits::MAX_CORNERS;
 
     /// The largest number of triangles a mesh may have, a polygon of `n`
     /// corners counting as `n − 2`: 2^24, 16,777,216. Loading and rendering
     /// take about 200 bytes per triangle, so a mesh at the ceiling needs a
     /// few GiB; the largest common scanned meshes (a few million triangles)
-    /// are well inside it.
-    pub const MAX_TRIANGLES: usize = 1 << 24;
+    /// are well inside it ([`crate::limits::MAX_TRIANGLES`]).
+    pub const MAX_TRIANGLES: usize = crate::limits::MAX_TRIANGLES;
 
     /// The largest number of vertices a mesh may have: three per triangle of
-    /// [`Mesh::MAX_TRIANGLES`], enough for a triangle soup.
-    pub const MAX_VERTICES: usize = 3 * Self::MAX_TRIANGLES;
+    /// [`Mesh::MAX_TRIANGLES`], enough for a triangle soup
+    /// ([`crate::limits::MAX_VERTICES`]).
+    pub const MAX_VERTICES: usize = crate::limits::MAX_VERTICES;
 
     /// The smoothing group that smooths nothing: a face in it is faceted.
     pub const NOT_SMOOTHED: u32 = 0;
@@ -339,6 +340,61 @@ impl Mesh {
         };
         for p in &mut self.positions {
             *p = (*p - centre) * scale;
+        }
+        self.geometry_id = fresh_geometry_id();
+        self
+    }
+
+    /// The power of two that brings the largest coordinate of the mesh's
+    /// bounding box into [1, 2), when that coordinate is so large (over
+    /// 2^24) or so small (under 2^−24) that products of coordinates (face
+    /// normals, squared distances) would overflow or vanish in `f32`; `None`
+    /// for any other mesh, and for one whose coordinates are all zero.
+    ///
+    /// Scaling by a power of two is exact, and every normal and the
+    /// [`Mesh::normalized`] mesh are the same for the scaled mesh, bit for
+    /// bit, as they would be without overflow: so a caller about to
+    /// normalize may scale first ([`Mesh::scaled_by_power_of_two`]) and
+    /// frame a model of any finite size.
+    pub fn extreme_scale_exponent(&self) -> Option<i32> {
+        let (lo, hi) = self.bounds();
+        let extent = lo.abs().max(hi.abs()).max_element();
+        if !(extent.is_finite() && extent > 0.0) {
+            return None;
+        }
+        let limit = (1u32 << 24) as f32;
+        if extent > limit || extent < 1.0 / limit {
+            // extent = m · 2^e with m in [1, 2): the exponent's bits.
+            let exponent = |v: f32| ((v.to_bits() >> 23) & 0xff) as i32 - 127;
+            let mut scale = -exponent(extent).max(-126);
+            if scale > 0 {
+                // Vertices no polygon uses may be larger: keep them finite.
+                let largest = self
+                    .positions
+                    .iter()
+                    .map(|p| p.abs().max_element())
+                    .fold(0.0f32, f32::max);
+                scale = scale.min(100 - exponent(largest).max(-126));
+            }
+            Some(scale)
+        } else {
+            None
+        }
+    }
+
+    /// The mesh with every position multiplied by 2^`exponent`, exactly
+    /// (unless a coordinate leaves `f32`'s range, which
+    /// [`Mesh::extreme_scale_exponent`] prevents).
+    pub fn scaled_by_power_of_two(mut self, exponent: i32) -> Mesh {
+        let mut left = exponent;
+        while left != 0 {
+            // 2^±100 at most per step: each factor is itself a normal f32.
+            let step = left.clamp(-100, 100);
+            let factor = f32::from_bits(((step + 127) as u32) << 23);
+            for p in &mut self.positions {
+                *p *= factor;
+            }
+            left -= step;
         }
         self.geometry_id = fresh_geometry_id();
         self

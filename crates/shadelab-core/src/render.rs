@@ -30,6 +30,7 @@ use crate::clip::{clip_polygon, ClipVertex};
 use crate::color::{Rgb, Rgb8};
 use crate::image::Image;
 use crate::lighting::{Light, Lighting, Material, Specular, Terms};
+use crate::limits::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 use crate::mesh::{CornerNormals, Mesh};
 use crate::normals::face_normals;
 use crate::palette::Palette;
@@ -40,11 +41,6 @@ use crate::raster::scanline::{
 use crate::raster::{signed_area_ccw, snap, FragmentSink, Interpolation, ScreenVertex};
 use crate::simd::SimdLevel;
 use crate::tiled::TiledRasterizer;
-
-/// Largest image side, in pixels.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
-/// Largest image, in pixels (64 Mpixel, about 450 MiB of colour and depth).
-pub const MAX_IMAGE_PIXELS: u64 = 1 << 26;
 
 /// The three classic shading methods.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
