@@ -8,8 +8,19 @@
 //! the document (JSON or GLB, told by the `glTF` magic, not by extension),
 //! and this module loads the buffers itself: the GLB `BIN` chunk,
 //! `data:…;base64,` URIs (decoded with the `base64` crate), and relative
-//! file URIs (percent-decoded, read from beside the file, all files together
-//! within [`crate::MAX_MESH_BYTES`]). Other URI schemes are refused.
+//! file URIs (percent-decoded, all files together within
+//! [`crate::MAX_MESH_BYTES`]). A file URI must name a regular file inside
+//! the folder that holds the glTF file, with every symbolic link resolved
+//! (`crate::input`); an absolute path, `..` out of the folder, a link
+//! pointing out, another URI scheme are errors naming the reference, and the
+//! referenced file is not opened, so none of its bytes can reach a message.
+//! Image URIs are held to the same rule, though images are never read.
+//!
+//! The triangles and vertices the scene draws are counted from the JSON,
+//! after instancing (a mesh drawn by several nodes counts once per node),
+//! and checked against [`Mesh::MAX_TRIANGLES`], [`Mesh::MAX_VERTICES`] and
+//! [`MAX_MEMORY_BYTES`] before any buffer is read: a small file cannot make
+//! gigabytes of vertices.
 //!
 //! What is read: the default scene (or, without one, the first scene; a file
 //! with no scene at all uses every root node), walked from its root nodes
@@ -44,9 +55,11 @@ use ::gltf::buffer::Source;
 use ::gltf::mesh::{Mode, Semantic};
 use base64::Engine;
 use glam::{Mat3, Mat4, Vec3};
-use shadelab_core::{CornerNormals, Mesh};
+use shadelab_core::limits::{mesh_memory, MAX_MEMORY_BYTES};
+use shadelab_core::{escape_token, CornerNormals, Mesh};
 
-use crate::mesh_file::{invalid, mesh_error, read_capped, MAX_MESH_BYTES};
+use crate::input::{read_capped, resolve_inside, Refusal};
+use crate::mesh_file::{invalid, mesh_error, MAX_MESH_BYTES};
 use crate::LoadError;
 
 /// Reads a glTF 2.0 file, `.gltf` or `.glb`; external buffers are read
@@ -98,9 +111,34 @@ pub fn parse_gltf(bytes: &[u8], name: &str, base_dir: Option<&Path>) -> Result<M
     // Now the crate's own validation is safe to run (it parses again).
     let gltf = ::gltf::Gltf::from_slice(bytes)
         .map_err(|e| invalid(name, format!("not a valid glTF 2.0 file: {e}")))?;
+    let instances = instances(&gltf, name)?;
+    check_budget(&instances, name)?;
+    check_images(&gltf, name, base_dir)?;
     let budget = MAX_MESH_BYTES.saturating_sub(bytes.len() as u64);
     let buffers = load_buffers(&gltf, name, base_dir, budget)?;
 
+    let mut out = Builder::default();
+    for (node, world) in &instances {
+        if let Some(mesh) = node.mesh() {
+            for primitive in mesh.primitives() {
+                let at = format!("mesh {}, primitive {}", mesh.index(), primitive.index());
+                if primitive.mode() != Mode::Triangles {
+                    out.skipped += 1;
+                    continue;
+                }
+                out.add(&primitive, *world, &buffers, name, &at)?;
+            }
+        }
+    }
+    out.finish(name)
+}
+
+/// Every node of the scene drawn, in drawing order, with its transform to
+/// world space.
+fn instances<'a>(
+    gltf: &'a ::gltf::Gltf,
+    name: &str,
+) -> Result<Vec<(::gltf::Node<'a>, Mat4)>, LoadError> {
     // The nodes to start from.
     let roots: Vec<::gltf::Node> = match gltf.default_scene().or_else(|| gltf.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
@@ -114,8 +152,7 @@ pub fn parse_gltf(bytes: &[u8], name: &str, base_dir: Option<&Path>) -> Result<M
                 .collect()
         }
     };
-
-    let mut out = Builder::default();
+    let mut instances = Vec::new();
     let mut visited = HashSet::new();
     let mut stack: Vec<(::gltf::Node, Mat4)> = roots
         .into_iter()
@@ -139,21 +176,110 @@ pub fn parse_gltf(bytes: &[u8], name: &str, base_dir: Option<&Path>) -> Result<M
                 format!("node {}: its transform is not finite", node.index()),
             ));
         }
-        if let Some(mesh) = node.mesh() {
-            for primitive in mesh.primitives() {
-                let at = format!("mesh {}, primitive {}", mesh.index(), primitive.index());
-                if primitive.mode() != Mode::Triangles {
-                    out.skipped += 1;
-                    continue;
-                }
-                out.add(&primitive, world, &buffers, name, &at)?;
-            }
-        }
         for child in node.children().collect::<Vec<_>>().into_iter().rev() {
             stack.push((child, world));
         }
+        instances.push((node, world));
     }
-    out.finish(name)
+    Ok(instances)
+}
+
+/// Fails, before any buffer is read or any vertex kept, when the scene
+/// draws more triangles or vertices than a mesh may have, counted after
+/// instancing (a mesh drawn by many nodes counts each time), or more than
+/// [`MAX_MEMORY_BYTES`] would hold: the counts are the accessors' own,
+/// from the JSON.
+fn check_budget(instances: &[(::gltf::Node, Mat4)], name: &str) -> Result<(), LoadError> {
+    let (mut triangles, mut vertices, mut drawing) = (0u64, 0u64, 0usize);
+    for (node, _) in instances {
+        let Some(mesh) = node.mesh() else { continue };
+        drawing += 1;
+        for primitive in mesh.primitives() {
+            let Some(position) = primitive.get(&Semantic::Positions) else {
+                continue;
+            };
+            if primitive.mode() != Mode::Triangles {
+                continue;
+            }
+            let count = claimed(&position);
+            triangles += primitive.indices().map_or(count, |i| claimed(&i)) / 3;
+            vertices += count;
+        }
+    }
+    let after = format!("after instancing ({drawing} nodes draw a mesh)");
+    if triangles > Mesh::MAX_TRIANGLES as u64 {
+        return Err(invalid(
+            name,
+            format!(
+                "the scene draws {triangles} triangles {after}; at most {} are supported",
+                Mesh::MAX_TRIANGLES
+            ),
+        ));
+    }
+    if vertices > Mesh::MAX_VERTICES as u64 {
+        return Err(invalid(
+            name,
+            format!(
+                "the scene draws {vertices} vertices {after}; at most {} are supported",
+                Mesh::MAX_VERTICES
+            ),
+        ));
+    }
+    let bytes = mesh_memory(vertices as usize, triangles as usize);
+    if bytes > MAX_MEMORY_BYTES {
+        return Err(invalid(
+            name,
+            format!(
+                "the scene draws {triangles} triangles and {vertices} vertices {after}, which \
+                 would take about {} MiB, more than the limit of {} MiB",
+                bytes >> 20,
+                MAX_MEMORY_BYTES >> 20
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// An accessor's element count as far as its buffer view's declared length
+/// can hold it (a count beyond that is an error found later, when the
+/// accessor is checked against its buffer).
+fn claimed(accessor: &::gltf::Accessor) -> u64 {
+    let Some(view) = accessor.view() else {
+        return 0;
+    };
+    let size = accessor.size() as u64;
+    let stride = view.stride().map_or(size, |s| s as u64).max(size).max(1);
+    let room = (view.length() as u64).saturating_sub(accessor.offset() as u64);
+    let fits = if room >= size {
+        (room - size) / stride + 1
+    } else {
+        0
+    };
+    (accessor.count() as u64).min(fits)
+}
+
+/// Fails when an image names a file outside the model's folder. Images are
+/// never read (textures are not drawn), but a file that names one is held
+/// to the same rule as its buffers.
+fn check_images(gltf: &::gltf::Gltf, name: &str, base_dir: Option<&Path>) -> Result<(), LoadError> {
+    for image in gltf.images() {
+        let ::gltf::image::Source::Uri { uri, .. } = image.source() else {
+            continue;
+        };
+        if uri.starts_with("data:") {
+            continue;
+        }
+        match resolve_uri(uri, base_dir) {
+            Ok(_) | Err(UriError::Refused(Refusal::Missing)) | Err(UriError::NoFolder) => {}
+            Err(e) => {
+                return Err(invalid(
+                    name,
+                    format!("image {}: {}", image.index(), e.describe(uri)),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The triangles gathered so far.
@@ -400,8 +526,8 @@ fn load_buffers(
                 (data, "its data URI".to_owned())
             }
             Source::Uri(uri) => {
-                let path = relative_path(uri, base_dir)
-                    .map_err(|m| invalid(name, format!("buffer {k}, URI `{uri}`: {m}")))?;
+                let path = resolve_uri(uri, base_dir)
+                    .map_err(|e| invalid(name, format!("buffer {k}: {}", e.describe(uri))))?;
                 let data = read_capped(&path, budget)
                     .map_err(|e| invalid(name, format!("buffer {k}: {e}")))?;
                 (data, format!("file {}", path.display()))
@@ -423,9 +549,8 @@ fn load_buffers(
     Ok(buffers)
 }
 
-/// The file a relative URI names.
-/// The files a glTF file's buffers name (not its data URIs), beside it;
-/// none when it cannot be read or parsed.
+/// The files a glTF file's buffers name (not its data URIs) inside its
+/// folder; none when it cannot be read or parsed.
 pub(crate) fn external_buffers(path: &Path, base: &Path) -> Vec<PathBuf> {
     let Ok(bytes) = read_capped(path, MAX_MESH_BYTES) else {
         return Vec::new();
@@ -439,17 +564,50 @@ pub(crate) fn external_buffers(path: &Path, base: &Path) -> Vec<PathBuf> {
         .iter()
         .filter_map(|buffer| buffer.uri.as_deref())
         .filter(|uri| !uri.starts_with("data:"))
-        .filter_map(|uri| relative_path(uri, Some(base)).ok())
+        .filter_map(|uri| resolve_uri(uri, Some(base)).ok())
         .collect()
 }
 
-fn relative_path(uri: &str, base_dir: Option<&Path>) -> Result<PathBuf, String> {
-    let base = base_dir.ok_or("external buffers cannot be read here")?;
-    if uri.contains(':') || uri.starts_with('/') || uri.starts_with('\\') {
-        return Err("only relative file URIs and base64 data URIs are supported".into());
+/// Why a URI does not name a file that may be read.
+enum UriError {
+    /// The file was not read from disk (the viewer's uploads).
+    NoFolder,
+    /// Not a relative file reference (`http:`, `file:`, a drive).
+    Scheme,
+    /// Malformed `%` escapes, or not UTF-8 once decoded.
+    Encoding,
+    /// Refused by [`resolve_inside`].
+    Refused(Refusal),
+}
+
+impl UriError {
+    fn describe(&self, uri: &str) -> String {
+        let shown = escape_token(uri);
+        match self {
+            UriError::NoFolder => format!(
+                "`{shown}` names an external file, which cannot be read here (only a .glb or \
+                 data: URIs)"
+            ),
+            UriError::Scheme => {
+                format!("`{shown}`: only relative file URIs and base64 data: URIs are read")
+            }
+            UriError::Encoding => format!("`{shown}`: malformed percent-encoding"),
+            UriError::Refused(r) => r.describe(uri),
+        }
     }
-    let decoded = percent_decode(uri).ok_or("malformed percent-encoding")?;
-    Ok(base.join(decoded))
+}
+
+/// The file a URI names, percent-decoded, inside `base_dir`.
+fn resolve_uri(uri: &str, base_dir: Option<&Path>) -> Result<PathBuf, UriError> {
+    let base = base_dir.ok_or(UriError::NoFolder)?;
+    if uri.contains(':') {
+        return Err(UriError::Scheme);
+    }
+    let decoded = percent_decode(uri).ok_or(UriError::Encoding)?;
+    if decoded.contains(':') || decoded.contains('\0') {
+        return Err(UriError::Scheme);
+    }
+    resolve_inside(base, &decoded).map_err(UriError::Refused)
 }
 
 fn percent_decode(s: &str) -> Option<String> {

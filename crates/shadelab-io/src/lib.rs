@@ -3,6 +3,7 @@
 #![warn(missing_docs)]
 
 mod gltf;
+mod input;
 mod mesh_file;
 mod mtl;
 mod obj;

@@ -8,16 +8,13 @@
 //! meshes within the limits of [`Mesh`] (checked against a file's counts
 //! before allocating), and reports errors as [`LoadError`]s naming the file.
 
-use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use shadelab_core::{Mesh, MeshError, Rgb};
 
 use crate::LoadError;
 
-/// Largest mesh file read, in bytes, whatever its format: 1 GiB. For glTF it
-/// bounds the `.gltf` file and every external buffer together.
-pub const MAX_MESH_BYTES: u64 = 1 << 30;
+pub use shadelab_core::limits::MAX_MESH_BYTES;
 
 /// A mesh file's contents: the mesh, and the colours its material gives.
 #[derive(Debug, Clone, PartialEq)]
@@ -26,6 +23,10 @@ pub struct MeshFile {
     pub mesh: Mesh,
     /// The material the file gives the mesh, if it gives one with a colour.
     pub material: Option<FileMaterial>,
+    /// What was passed over while reading it (a material library that is
+    /// missing, outside the model's folder or not a regular file), one
+    /// message each, for the user to see.
+    pub warnings: Vec<String>,
 }
 
 /// Surface colours a mesh file gives: the `Ka` and `Kd` of the material an
@@ -76,6 +77,7 @@ pub fn load_mesh_file(path: &Path) -> Result<MeshFile, LoadError> {
     Ok(MeshFile {
         mesh,
         material: None,
+        warnings: Vec::new(),
     })
 }
 
@@ -148,38 +150,6 @@ fn unknown_format(name: &str) -> LoadError {
                 .join(", ")
         ),
     )
-}
-
-/// Reads a whole file of at most `limit` bytes.
-pub(crate) fn read_capped(path: &Path, limit: u64) -> Result<Vec<u8>, LoadError> {
-    let name = path.display().to_string();
-    let io = |source| LoadError::Io {
-        path: name.clone(),
-        source,
-    };
-    let file = std::fs::File::open(path).map_err(io)?;
-    let size = file.metadata().map_err(io)?.len();
-    let too_large = |bytes| LoadError::TooLarge {
-        path: name.clone(),
-        bytes,
-        limit,
-    };
-    if size > limit {
-        return Err(too_large(size));
-    }
-    // The file may grow between the size check and the read: read one byte
-    // more than the limit at most, to notice.
-    let mut bytes = Vec::with_capacity(size as usize);
-    file.take(limit + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|source| LoadError::Io {
-            path: name.clone(),
-            source,
-        })?;
-    if bytes.len() as u64 > limit {
-        return Err(too_large(bytes.len() as u64));
-    }
-    Ok(bytes)
 }
 
 /// A [`LoadError::Invalid`] for `name`.

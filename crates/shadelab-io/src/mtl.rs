@@ -13,7 +13,11 @@
 //! the legal one-value form `Kd 0.5` (grey) and, in `tobj` 4.0.5, panics on
 //! it; the two statements read here take a few lines.
 
+use std::collections::HashSet;
+
 use shadelab_core::Rgb;
+
+use crate::input::lines_any;
 
 /// A material as a library defines it: the colours it gives.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,19 +28,22 @@ pub(crate) struct MtlColors {
 }
 
 /// The materials of a library, in file order; of two materials with the same
-/// name the first is kept.
+/// name the first is kept. Linear in the text's length: names already seen
+/// are kept in a hash set, so 300,000 materials take no longer than their
+/// bytes take to read.
 pub(crate) fn parse_mtl(text: &str) -> Vec<MtlColors> {
     let mut materials: Vec<MtlColors> = Vec::new();
+    let mut seen: HashSet<String> = HashSet::new();
     let mut current: Option<MtlColors> = None;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    fn finish(material: Option<MtlColors>, materials: &mut Vec<MtlColors>) {
+    let mut finish = |material: Option<MtlColors>, materials: &mut Vec<MtlColors>| {
         if let Some(m) = material {
-            if !materials.iter().any(|o| o.name == m.name) {
+            if seen.insert(m.name.clone()) {
                 materials.push(m);
             }
         }
-    }
-    for line in text.lines() {
+    };
+    for line in lines_any(text) {
         let statement = line.split('#').next().unwrap_or("").trim();
         let Some((keyword, rest)) = split_keyword(statement) else {
             continue;

@@ -28,9 +28,10 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use glam::Vec3;
-use shadelab_core::{CornerNormals, Mesh};
+use shadelab_core::{escape_token, CornerNormals, Mesh};
 
-use crate::mesh_file::{invalid, mesh_error, read_capped, FileMaterial, MeshFile, MAX_MESH_BYTES};
+use crate::input::{lines_any, read_capped, resolve_inside, Refusal};
+use crate::mesh_file::{invalid, mesh_error, FileMaterial, MeshFile, MAX_MESH_BYTES};
 use crate::mtl::{parse_mtl, split_keyword};
 use crate::LoadError;
 
@@ -46,17 +47,52 @@ pub fn load_obj(path: &Path) -> Result<Mesh, LoadError> {
 }
 
 /// Reads an OBJ file and the colours of its main material from the
-/// libraries its `mtllib` statements name, beside the file.
+/// libraries its `mtllib` statements name, in the file's folder.
+///
+/// A library is read only when it is a regular file inside the model's
+/// folder (every symbolic link resolved); one that is missing, outside,
+/// not a regular file, too large or unreadable is passed over with a
+/// message in [`MeshFile::warnings`], and the mesh loads all the same.
 ///
 /// # Errors
 /// As [`load_obj`]; the material libraries never cause an error.
 pub fn load_obj_file(path: &Path) -> Result<MeshFile, LoadError> {
     let text = read_text(path)?;
     let base = path.parent().unwrap_or(Path::new("."));
-    parse_obj_file(&text, &path.display().to_string(), &mut |library| {
-        let bytes = read_capped(&base.join(library), MAX_MESH_BYTES).ok()?;
-        Some(String::from_utf8_lossy(&bytes).into_owned())
-    })
+    let mut warnings = Vec::new();
+    let mut file = parse_obj_file(&text, &path.display().to_string(), &mut |library| {
+        match read_library(base, library) {
+            Ok(text) => Some(text),
+            Err(why) => {
+                // A name with blanks is tried whole first, then word by
+                // word: only the words' absence is worth a message.
+                let whole_of_several = library.split_whitespace().nth(1).is_some();
+                if !(whole_of_several && why == Refusal::Missing) {
+                    warnings.push(format!(
+                        "{}: material library {}; its colours are not used",
+                        path.display(),
+                        why.describe(library)
+                    ));
+                }
+                None
+            }
+        }
+    })?;
+    file.warnings = warnings;
+    Ok(file)
+}
+
+/// A material library's text, read only from inside `base`.
+fn read_library(base: &Path, library: &str) -> Result<String, Refusal> {
+    let path = resolve_inside(base, library)?;
+    let bytes = read_capped(&path, MAX_MESH_BYTES).map_err(|e| {
+        Refusal::Unreadable(match e {
+            LoadError::Invalid { message, .. } => message,
+            LoadError::Io { source, .. } => source.to_string(),
+            other => other.to_string(),
+        })
+    })?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
 /// Every library name the file's `mtllib` statements give, whole and split
@@ -99,7 +135,11 @@ pub fn parse_obj_file(
     let material = summary
         .material
         .and_then(|wanted| find_material(&wanted, &summary.libraries, read_library));
-    Ok(MeshFile { mesh, material })
+    Ok(MeshFile {
+        mesh,
+        material,
+        warnings: Vec::new(),
+    })
 }
 
 /// The file's text, at most [`MAX_MESH_BYTES`] of UTF-8.
@@ -132,7 +172,7 @@ fn statements_of(text: &str) -> impl Iterator<Item = (usize, String)> + '_ {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut logical = String::new();
     let mut first_line = 0;
-    text.lines().enumerate().filter_map(move |(k, raw)| {
+    lines_any(text).enumerate().filter_map(move |(k, raw)| {
         if logical.is_empty() {
             first_line = k + 1;
         }
@@ -344,9 +384,12 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
                 for (axis, a) in args[..used].iter().enumerate() {
                     let value: f32 = a
                         .parse()
-                        .map_err(|_| error(format!("`{a}` is not a number")))?;
+                        .map_err(|_| error(format!("`{}` is not a number", escape_token(a))))?;
                     if !value.is_finite() {
-                        return Err(error(format!("coordinate `{a}` is not a finite number")));
+                        return Err(error(format!(
+                            "coordinate `{}` is not a finite number",
+                            escape_token(a)
+                        )));
                     }
                     if axis == 3 && value == 0.0 {
                         return Err(error("the w coordinate must not be 0".into()));
@@ -396,19 +439,25 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
                         match parts.next() {
                             Some(s) if !s.is_empty() => {
                                 let i: i64 = s.parse().map_err(|_| {
-                                    error(format!("`{corner}`: `{s}` is not an index"))
+                                    error(format!(
+                                        "`{}`: `{}` is not an index",
+                                        escape_token(corner),
+                                        escape_token(s)
+                                    ))
                                 })?;
                                 let resolved = if i < 0 { count + i } else { i - 1 };
                                 if i == 0 || resolved < 0 || resolved >= count {
                                     return Err(error(format!(
-                                        "`{corner}`: {what} index {i} is out of range ({count} {what}s defined so far)"
+                                        "`{}`: {what} index {i} is out of range ({count} {what}s defined so far)",
+                                        escape_token(corner)
                                     )));
                                 }
                                 Ok(Some(s))
                             }
-                            _ if required => {
-                                Err(error(format!("`{corner}`: missing vertex index")))
-                            }
+                            _ if required => Err(error(format!(
+                                "`{}`: missing vertex index",
+                                escape_token(corner)
+                            ))),
                             _ => Ok(None),
                         }
                     };
@@ -417,7 +466,10 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
                     let normal = index("normal", normals, false)?;
                     every_corner_has_normal &= normal.is_some();
                     if parts.next().is_some() {
-                        return Err(error(format!("`{corner}`: too many `/`-separated indices")));
+                        return Err(error(format!(
+                            "`{}`: too many `/`-separated indices",
+                            escape_token(corner)
+                        )));
                     }
                     statements.push(' ');
                     statements.push_str(vertex.unwrap_or_default());
@@ -438,8 +490,9 @@ fn check(text: &str, name: &str) -> Result<Summary, LoadError> {
                 } else {
                     rest.parse().map_err(|_| {
                         error(format!(
-                            "`s` takes a smoothing group number (0 to {}) or `off`, found `{rest}`",
-                            u32::MAX
+                            "`s` takes a smoothing group number (0 to {}) or `off`, found `{}`",
+                            u32::MAX,
+                            escape_token(rest)
                         ))
                     })?
                 };

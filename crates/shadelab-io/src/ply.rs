@@ -36,9 +36,10 @@ use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{
     ElementDef, Encoding, Header, Property, PropertyAccess, PropertyType, ScalarType,
 };
-use shadelab_core::{CornerNormals, Mesh};
+use shadelab_core::{escape_message, escape_token, CornerNormals, Mesh};
 
-use crate::mesh_file::{invalid, mesh_error, read_capped, MAX_MESH_BYTES};
+use crate::input::{lone_cr_to_lf, read_capped};
+use crate::mesh_file::{invalid, mesh_error, MAX_MESH_BYTES};
 use crate::LoadError;
 
 /// Reads a PLY file.
@@ -57,17 +58,40 @@ pub fn load_ply(path: &Path) -> Result<Mesh, LoadError> {
 /// # Errors
 /// As [`load_ply`].
 pub fn parse_ply(bytes: &[u8], name: &str) -> Result<Mesh, LoadError> {
-    if !(bytes.starts_with(b"ply\n") || bytes.starts_with(b"ply\r\n")) {
+    if !(bytes.starts_with(b"ply\n") || bytes.starts_with(b"ply\r")) {
         return Err(invalid(
             name,
             "byte 0: not a PLY file (it does not begin with the line `ply`)",
         ));
     }
+    let bytes = &*unify_header_line_ends(bytes);
     let mut cursor = Cursor::new(bytes);
     let header = Parser::<Ignored>::new()
         .read_header(&mut cursor)
-        .map_err(|e| invalid(name, format!("PLY header: {e}")))?;
+        .map_err(|e| {
+            invalid(
+                name,
+                format!("PLY header: {}", escape_message(&e.to_string())),
+            )
+        })?;
     let data_start = cursor.position();
+    // An element with nothing in it takes no bytes: its count would be
+    // read past for ever.
+    if let Some(empty) = header
+        .elements
+        .values()
+        .find(|e| e.count > 0 && e.properties.is_empty())
+    {
+        return Err(invalid(
+            name,
+            format!(
+                "PLY element `{}` declares {} elements but no properties: there is nothing to \
+                 read (an element needs at least one property)",
+                escape_token(&empty.name),
+                empty.count
+            ),
+        ));
+    }
 
     let vertex_def = header
         .elements
@@ -201,6 +225,47 @@ pub fn parse_ply(bytes: &[u8], name: &str) -> Result<Mesh, LoadError> {
             .map_err(mesh_error(name))
     } else {
         Ok(mesh)
+    }
+}
+
+/// The file with CR-only line ends made LF, where that is text: in the
+/// header when its first line ends with a lone CR (up to `end_header` and
+/// its CR, so binary data after it is left alone; one byte for one byte, so
+/// offsets stay), and in the whole file when the header says `format ascii`.
+fn unify_header_line_ends(bytes: &[u8]) -> std::borrow::Cow<'_, [u8]> {
+    let cr_only = bytes.get(3) == Some(&b'\r') && bytes.get(4) != Some(&b'\n');
+    let ascii = |header: &[u8]| {
+        header.split(|&b| b == b'\n' || b == b'\r').any(|line| {
+            line.split(|b| b.is_ascii_whitespace())
+                .filter(|w| !w.is_empty())
+                .take(2)
+                .eq([&b"format"[..], b"ascii"])
+        })
+    };
+    let end = |bytes: &[u8], terminator: &[u8]| {
+        bytes
+            .windows(terminator.len())
+            .position(|w| w == terminator)
+            .map(|k| k + terminator.len())
+    };
+    if cr_only {
+        let Some(header_end) = end(bytes, b"\rend_header\r") else {
+            return lone_cr_to_lf(bytes);
+        };
+        if ascii(&bytes[..header_end]) {
+            return lone_cr_to_lf(bytes);
+        }
+        let mut out = bytes.to_vec();
+        for b in &mut out[..header_end] {
+            if *b == b'\r' {
+                *b = b'\n';
+            }
+        }
+        return std::borrow::Cow::Owned(out);
+    }
+    match end(bytes, b"end_header") {
+        Some(header_end) if ascii(&bytes[..header_end]) => lone_cr_to_lf(bytes),
+        _ => std::borrow::Cow::Borrowed(bytes),
     }
 }
 

@@ -14,13 +14,18 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use serde::Deserialize;
+use shadelab_core::limits::{
+    MAX_MODEL_COORDINATE_WITH_CAMERA, MAX_SCENE_BYTES, MAX_SCENE_COORDINATE,
+};
 use shadelab_core::raster::scanline::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
 use shadelab_core::{
     builtin_model, builtin_model_info, vertex_normals, Camera, CornerNormals, Interpolation, Light,
     LightKind, Material, Mesh, NormalWeighting, Palette, Polygons, Rasterizer, RenderOptions, Rgb,
     Rgb8, Scene, Shading, Specular, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
 };
+use shadelab_core::{escape_token, format_number};
 
+use crate::input::{read_capped, unify_line_ends};
 use crate::{load_mesh_file, FileMaterial, LoadError};
 
 /// A scene file as written: every key optional.
@@ -81,12 +86,13 @@ pub enum NormalsChoice {
 #[serde(deny_unknown_fields)]
 pub struct CameraSection {
     /// The viewer's position.
+    #[serde(deserialize_with = "exactly::three")]
     pub eye: [f32; 3],
     /// The point looked at.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "exactly::three")]
     pub target: [f32; 3],
     /// Up on the screen.
-    #[serde(default = "default_up")]
+    #[serde(default = "default_up", deserialize_with = "exactly::three")]
     pub up: [f32; 3],
     /// Vertical field of view, degrees.
     #[serde(default = "default_fov")]
@@ -97,6 +103,33 @@ pub struct CameraSection {
     /// Far plane distance.
     #[serde(default = "default_far")]
     pub far: f32,
+}
+
+/// Arrays of exactly three values: serde's `[T; 3]` reads three elements and
+/// lets a fourth pass unseen, so `position = [1, 2, 3, 4]` would lose its
+/// last number in silence.
+mod exactly {
+    use serde::de::{Deserialize, Deserializer, Error};
+
+    pub fn three<'de, D, T>(d: D) -> Result<[T; 3], D::Error>
+    where
+        D: Deserializer<'de>,
+        T: Deserialize<'de>,
+    {
+        let values = Vec::<T>::deserialize(d)?;
+        let found = values.len();
+        values
+            .try_into()
+            .map_err(|_| D::Error::invalid_length(found, &"an array of exactly 3 numbers"))
+    }
+
+    pub fn three_or_none<'de, D, T>(d: D) -> Result<Option<[T; 3]>, D::Error>
+    where
+        D: Deserializer<'de>,
+        T: Deserialize<'de>,
+    {
+        three(d).map(Some)
+    }
 }
 
 fn default_up() -> [f32; 3] {
@@ -117,6 +150,7 @@ fn default_far() -> f32 {
 #[serde(deny_unknown_fields)]
 pub struct AmbientSection {
     /// RGB 0–255; default white.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
     pub color: Option<[i64; 3]>,
     /// Default 0.2.
     pub intensity: Option<f32>,
@@ -139,10 +173,13 @@ pub struct LightSection {
     /// point | directional
     pub kind: LightKindName,
     /// For a point light.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
     pub position: Option<[f32; 3]>,
     /// For a directional light: the direction its rays travel.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
     pub direction: Option<[f32; 3]>,
     /// RGB 0–255; default white.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
     pub color: Option<[i64; 3]>,
     /// Default 1.
     pub intensity: Option<f32>,
@@ -153,10 +190,13 @@ pub struct LightSection {
 #[serde(deny_unknown_fields)]
 pub struct MaterialSection {
     /// Ambient reflectance, RGB 0–255.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
     pub ka: Option<[i64; 3]>,
     /// Diffuse reflectance, RGB 0–255.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
     pub kd: Option<[i64; 3]>,
     /// Specular reflectance, RGB 0–255.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
     pub ks: Option<[i64; 3]>,
     /// Specular exponent, ≥ 0.
     pub shininess: Option<f32>,
@@ -173,6 +213,7 @@ pub struct RenderSection {
     /// flat | gouraud | phong; default phong.
     pub shading: Option<ShadingName>,
     /// RGB 0–255; default black.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
     pub background: Option<[i64; 3]>,
     /// Default true.
     pub cull_backfaces: Option<bool>,
@@ -331,23 +372,69 @@ impl SceneFile {
     ///
     /// # Errors
     /// [`SceneError::Io`] or [`SceneError::Parse`] (with line and column).
+    /// Reads a scene file: a regular file of at most [`MAX_SCENE_BYTES`] of
+    /// UTF-8 (a FIFO, a device or a directory is refused without waiting on
+    /// it), parsed as [`SceneFile::parse`] does.
+    ///
+    /// # Errors
+    /// [`SceneError::Io`] when it cannot be read, is not a regular file or
+    /// is too large, or [`SceneError::Parse`] (with line and column).
     pub fn load(path: &Path) -> Result<SceneFile, SceneError> {
         let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        let io = |source| SceneError::Io {
             path: name.clone(),
             source,
+        };
+        let bytes = read_capped(path, MAX_SCENE_BYTES).map_err(|e| match e {
+            LoadError::Io { source, .. } => io(source),
+            LoadError::Invalid { message, .. } => io(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                message,
+            )),
+            other => io(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                match other {
+                    LoadError::TooLarge { bytes, limit, .. } => format!(
+                        "{bytes} bytes is more than the limit of {limit} bytes for a scene file"
+                    ),
+                    other => other.to_string(),
+                },
+            )),
+        })?;
+        let text = String::from_utf8(bytes).map_err(|e| SceneError::Parse {
+            path: name.clone(),
+            message: format!(
+                "not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            ),
         })?;
         SceneFile::parse(&text, &name)
     }
 
-    /// Parses scene TOML; `name` is used in error messages.
+    /// Parses scene TOML; `name` is used in error messages. Lines may end
+    /// with LF, CR LF or a lone CR. A value of the wrong type or length is
+    /// reported with its key (`lights[0].position`), line and column.
     ///
     /// # Errors
     /// [`SceneError::Parse`].
     pub fn parse(text: &str, name: &str) -> Result<SceneFile, SceneError> {
-        toml::from_str(text).map_err(|e| SceneError::Parse {
-            path: name.to_owned(),
-            message: e.to_string(),
+        let text = unify_line_ends(text);
+        let parse_error = |mut e: toml::de::Error, key: Option<String>| {
+            e.set_input(Some(&text));
+            let message = e.to_string();
+            SceneError::Parse {
+                path: name.to_owned(),
+                message: match key {
+                    Some(key) => format!("{key}: {message}"),
+                    None => message,
+                },
+            }
+        };
+        let document = toml::Deserializer::parse(&text).map_err(|e| parse_error(e, None))?;
+        serde_path_to_error::deserialize(document).map_err(|e| {
+            let key = e.path().to_string();
+            let key = (key != ".").then_some(key);
+            parse_error(e.into_inner(), key)
         })
     }
 
@@ -362,6 +449,21 @@ impl SceneFile {
     /// # Errors
     /// [`SceneError::Value`] naming the key, or [`SceneError::Model`].
     pub fn resolve(&self, base_dir: &Path) -> Result<(Scene, RenderOptions), SceneError> {
+        self.resolve_reporting(base_dir, &mut Vec::new())
+    }
+
+    /// [`SceneFile::resolve`], adding to `warnings` what was passed over
+    /// while loading the model ([`crate::MeshFile::warnings`]: a material
+    /// library that is missing, outside the model's folder or not a regular
+    /// file), for the caller to show.
+    ///
+    /// # Errors
+    /// As [`SceneFile::resolve`].
+    pub fn resolve_reporting(
+        &self,
+        base_dir: &Path,
+        warnings: &mut Vec<String>,
+    ) -> Result<(Scene, RenderOptions), SceneError> {
         let options = self.render_options()?;
         let mut file_material = None;
         let (mesh, default_crease) = self.model_mesh(|source| {
@@ -370,12 +472,14 @@ impl SceneFile {
                 return Err(value_error(
                     "model.source",
                     format!(
-                        "{source:?} is neither a built-in model ({}) nor an existing file",
+                        "`{}` is neither a built-in model ({}) nor an existing file",
+                        escape_token(source),
                         builtin_names()
                     ),
                 ));
             }
             let file = load_mesh_file(&path)?;
+            warnings.extend(file.warnings);
             file_material = file.material;
             Ok(file.mesh)
         })?;
@@ -528,6 +632,15 @@ impl SceneFile {
         file: impl FnOnce(&str) -> Result<Mesh, SceneError>,
     ) -> Result<(Mesh, Option<f32>), SceneError> {
         let source = self.model.source.as_deref().unwrap_or("teapot");
+        if source.trim().is_empty() {
+            return Err(value_error(
+                "model.source",
+                format!(
+                    "is empty: name a built-in model ({}) or a mesh file",
+                    builtin_names()
+                ),
+            ));
+        }
         if let Some(info) = builtin_model_info(source) {
             let mesh = builtin_model(source, self.model.detail)
                 .map_err(|e| value_error("model.detail", e.to_string()))?;
@@ -536,7 +649,10 @@ impl SceneFile {
         if self.model.detail.is_some() {
             return Err(value_error(
                 "model.detail",
-                format!("only built-in models have a detail; {source:?} is a file"),
+                format!(
+                    "only built-in models have a detail; `{}` is a file",
+                    escape_token(source)
+                ),
             ));
         }
         Ok((file(source)?, None))
@@ -557,11 +673,37 @@ impl SceneFile {
             Some(a) if !(a.is_finite() && (0.0..=180.0).contains(&a)) => {
                 return Err(value_error(
                     "model.crease_angle",
-                    format!("must be 0..=180 degrees, got {a}"),
+                    format!("must be 0..=180 degrees, got {}", format_number(a)),
                 ));
             }
             Some(a) => Some(a),
             None => default_crease,
+        };
+        // A model drawn in its own coordinates must keep its products
+        // (face normals) within f32; one framed by the default camera is
+        // first scaled by an exact power of two, which changes no normal and
+        // no normalized position, so that any finite coordinates are framed.
+        let (lo, hi) = mesh.bounds();
+        let extent = lo.abs().max(hi.abs()).max_element();
+        let mesh = if self.camera.is_some() {
+            if extent > MAX_MODEL_COORDINATE_WITH_CAMERA {
+                return Err(value_error(
+                    "model.source",
+                    format!(
+                        "the model's coordinates reach {}; drawn with a [camera] in its own \
+                         coordinates a model may reach ±{} (its face normals would overflow); \
+                         without [camera] it is framed whatever its size",
+                        format_number(extent),
+                        format_number(MAX_MODEL_COORDINATE_WITH_CAMERA)
+                    ),
+                ));
+            }
+            mesh
+        } else {
+            match mesh.extreme_scale_exponent() {
+                Some(exponent) => mesh.scaled_by_power_of_two(exponent),
+                None => mesh,
+            }
         };
         let choice = self.model.normals.unwrap_or_default();
         let normals = match (choice, mesh.file_normals()) {
@@ -637,11 +779,43 @@ impl SceneFile {
             if !(zoom.is_finite() && (MIN_ZOOM..=MAX_ZOOM).contains(&zoom)) {
                 return Err(value_error(
                     "render.zoom",
-                    format!("must be {MIN_ZOOM}..={MAX_ZOOM}, got {zoom}"),
+                    format!(
+                        "must be {MIN_ZOOM}..={MAX_ZOOM}, got {}",
+                        format_number(zoom)
+                    ),
                 ));
             }
-            let half = (camera.fov_y_degrees.to_radians() * 0.5).tan() / zoom;
+            let given = camera.fov_y_degrees;
+            let half = (given.to_radians() * 0.5).tan() / zoom;
             camera.fov_y_degrees = (2.0 * half.atan()).to_degrees();
+            if !(camera.fov_y_degrees > 0.0 && camera.fov_y_degrees < 180.0) {
+                // Report what was given, not the field of view it became.
+                let key = if self.camera.is_some() {
+                    "camera.fov_y"
+                } else {
+                    "the default field of view"
+                };
+                return Err(value_error(
+                    "render.zoom",
+                    format!(
+                        "a zoom of {} widens {key} = {} degrees to 180 degrees or more in \
+                         single precision; use a larger zoom or a narrower field of view",
+                        format_number(zoom),
+                        format_number(given)
+                    ),
+                ));
+            }
+        }
+        // Orbiting moves the eye: say what was given when the result fails.
+        if let Err(e) = camera.validate() {
+            return Err(value_error(
+                "render.yaw",
+                format!(
+                    "yaw {} and pitch {} give a camera that cannot be used: {e}",
+                    format_number(yaw),
+                    format_number(pitch)
+                ),
+            ));
         }
 
         let a = &self.ambient;
@@ -681,7 +855,10 @@ impl SceneFile {
         if material.shininess > 10_000.0 {
             return Err(value_error(
                 "material.shininess",
-                format!("must be at most 10000, got {}", material.shininess),
+                format!(
+                    "must be at most 10000, got {}",
+                    format_number(material.shininess)
+                ),
             ));
         }
         scene.camera = camera;
@@ -764,7 +941,7 @@ fn finite(key: &str, v: f32) -> Result<f32, SceneError> {
     } else {
         Err(value_error(
             key,
-            format!("must be a finite number, got {v}"),
+            format!("must be a finite number, got {}", format_number(v)),
         ))
     }
 }
@@ -775,19 +952,24 @@ fn non_negative(key: &str, v: f32) -> Result<f32, SceneError> {
     } else {
         Err(value_error(
             key,
-            format!("must be a finite number ≥ 0, got {v}"),
+            format!("must be a finite number ≥ 0, got {}", format_number(v)),
         ))
     }
 }
 
 fn vec3(key: &str, v: [f32; 3]) -> Result<Vec3, SceneError> {
+    let given = v;
     let v = Vec3::from_array(v);
-    if v.is_finite() && v.abs().max_element() <= 1e30 {
+    if v.is_finite() && v.abs().max_element() <= MAX_SCENE_COORDINATE {
         Ok(v)
     } else {
         Err(value_error(
             key,
-            format!("must be finite and within ±1e30, got {v}"),
+            format!(
+                "must be finite and within ±{}, got [{}]",
+                format_number(MAX_SCENE_COORDINATE),
+                given.map(format_number).join(", ")
+            ),
         ))
     }
 }

@@ -28,9 +28,10 @@ use std::io::{Read, Seek, SeekFrom};
 use std::path::Path;
 
 use glam::Vec3;
-use shadelab_core::Mesh;
+use shadelab_core::{escape_message, Mesh};
 
-use crate::mesh_file::{invalid, mesh_error, read_capped, MAX_MESH_BYTES};
+use crate::input::{lone_cr_to_lf, read_capped};
+use crate::mesh_file::{invalid, mesh_error, MAX_MESH_BYTES};
 use crate::LoadError;
 
 /// Bytes before the first triangle of a binary STL: header and count.
@@ -139,6 +140,8 @@ fn parse_ascii(bytes: &[u8], name: &str, not_binary: Option<&str>) -> Result<Mes
         Some(why) => format!("{message} (read as ASCII STL because it is not binary: {why})"),
         None => message,
     };
+    // Old Mac files end their lines with a lone CR; `stl_io` splits at LF.
+    let bytes = &*lone_cr_to_lf(bytes);
     // `stl_io` wants the first line to start with exactly "solid " (a name
     // after it); "solid" alone, or leading blanks, are also found in the wild.
     let start = bytes
@@ -151,8 +154,12 @@ fn parse_ascii(bytes: &[u8], name: &str, not_binary: Option<&str>) -> Result<Mes
         .map_or(bytes.len(), |p| start + p + 1);
     let mut text = b"solid shadelab\n".to_vec();
     text.extend_from_slice(&bytes[first_line_end..]);
-    let indexed = stl_io::read_stl(&mut std::io::Cursor::new(text))
-        .map_err(|e| invalid(name, explain(format!("ASCII STL: {e}"))))?;
+    let indexed = stl_io::read_stl(&mut std::io::Cursor::new(text)).map_err(|e| {
+        invalid(
+            name,
+            explain(format!("ASCII STL: {}", escape_message(&e.to_string()))),
+        )
+    })?;
     if indexed.faces.is_empty() {
         return Err(invalid(
             name,

@@ -78,3 +78,86 @@ fn gltf_position_naming_a_missing_accessor_is_an_error() {
         .to_string();
     assert!(error.contains("POSITION names accessor"), "{error}");
 }
+
+fn corpus_file(path: &str) -> Vec<u8> {
+    std::fs::read(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../fuzz/corpus")
+            .join(path),
+    )
+    .unwrap()
+}
+
+/// A PLY element with no properties and a count of 2^64 − 1 took no bytes
+/// per element and was read past for ever.
+#[test]
+fn ply_element_without_properties_is_an_error() {
+    let error = parse_ply(
+        &corpus_file("ply/regression-element-without-properties.ply"),
+        "x.ply",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        error.contains("`junk`") && error.contains("no properties"),
+        "{error}"
+    );
+}
+
+/// A 49 KB glTF file drawing one mesh from 2700 nodes: 17,280,000 triangles
+/// after instancing, refused from the JSON's counts before any buffer is
+/// decoded (it used to gather gigabytes first).
+#[test]
+fn gltf_instancing_beyond_the_triangle_limit_is_an_error() {
+    let bytes = corpus_file("gltf/regression-instancing-beyond-the-triangle-limit.gltf");
+    let error = parse_gltf(&bytes, "x.gltf", None).unwrap_err().to_string();
+    assert!(
+        error.contains("17280000 triangles after instancing (2700 nodes draw a mesh)"),
+        "{error}"
+    );
+}
+
+/// `position = [1, 2, 3, 4]` lost its fourth number in silence.
+#[test]
+fn scene_array_with_an_extra_element_is_an_error() {
+    let text = String::from_utf8(corpus_file("scene/regression-extra-array-element.toml")).unwrap();
+    let error = SceneFile::parse(&text, "x.toml").unwrap_err().to_string();
+    assert!(
+        error.contains("lights[0].position") && error.contains("line 3"),
+        "{error}"
+    );
+}
+
+/// Files whose lines end with a lone CR read as if they ended with LF.
+#[test]
+fn cr_line_ends_read_as_lf() {
+    let lf = |bytes: Vec<u8>| -> Vec<u8> {
+        bytes
+            .into_iter()
+            .map(|b| if b == b'\r' { b'\n' } else { b })
+            .collect()
+    };
+    let ply = corpus_file("ply/regression-cr-line-ends.ply");
+    assert_eq!(
+        parse_ply(&ply, "x.ply").unwrap(),
+        parse_ply(&lf(ply.clone()), "x.ply").unwrap()
+    );
+    let stl = corpus_file("stl/regression-cr-line-ends.stl");
+    assert_eq!(
+        parse_stl(&stl, "x.stl").unwrap(),
+        parse_stl(&lf(stl.clone()), "x.stl").unwrap()
+    );
+    let obj = corpus_file("obj/regression-cr-line-ends.obj");
+    let (text, library) = obj.split_at(obj.iter().position(|&b| b == 0).unwrap());
+    let text = std::str::from_utf8(text).unwrap();
+    let library = String::from_utf8_lossy(&library[1..]).into_owned();
+    let file = parse_obj_file(text, "x.obj", &mut |_| Some(library.clone())).unwrap();
+    assert_eq!(file.mesh.polygon_count(), 4);
+    let blue = file.material.expect("the library's material").kd.unwrap();
+    assert_eq!((blue.r, blue.g, blue.b), (0.0, 0.0, 1.0));
+    let scene = String::from_utf8(corpus_file("scene/regression-cr-line-ends.toml")).unwrap();
+    assert_eq!(
+        SceneFile::parse(&scene, "x.toml").unwrap(),
+        SceneFile::parse(&scene.replace('\r', "\n"), "x.toml").unwrap()
+    );
+}
