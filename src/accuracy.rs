@@ -5,6 +5,7 @@ use std::io::Write;
 
 use anyhow::Context;
 use plotters::prelude::*;
+use shadelab_core::limits::{ACCURACY_BYTES_PER_PIXEL, MAX_ACCURACY_DETAILS};
 use shadelab_core::{Image, Rgb8, Shading};
 use shadelab_io::write_png;
 use shadelab_lab::{accuracy, AccuracyRow, Texts};
@@ -16,9 +17,10 @@ use crate::{check_output, input_error, output_error, Failure};
 
 /// Prints the table and writes the plot.
 pub fn run(args: &AccuracyArgs) -> Result<(), Failure> {
-    if args.details.is_empty() {
+    if args.details.is_empty() || args.details.len() > MAX_ACCURACY_DETAILS {
         return Err(input_error(anyhow::anyhow!(
-            "--details needs at least one level"
+            "--details needs 1..={MAX_ACCURACY_DETAILS} levels, got {}",
+            args.details.len()
         )));
     }
     let first = load(
@@ -28,6 +30,7 @@ pub fn run(args: &AccuracyArgs) -> Result<(), Failure> {
         Some("sphere"),
     )?;
     require_exact_surface(&first.file)?;
+    first.check_memory("accuracy", ACCURACY_BYTES_PER_PIXEL)?;
     if let Some(out) = &args.output {
         check_output(out, &first.inputs)?;
     }
@@ -44,6 +47,7 @@ pub fn run(args: &AccuracyArgs) -> Result<(), Failure> {
             Some("sphere"),
         )?;
         let surface = require_exact_surface(&loaded.file)?;
+        loaded.check_memory("accuracy", ACCURACY_BYTES_PER_PIXEL)?;
         Ok((loaded.scene, loaded.options, surface))
     })?;
     let texts = Texts::new(args.lang.into());

@@ -21,10 +21,14 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
 use glam::Vec3;
+use shadelab_core::limits::{MAX_BENCH_BUDGET_SECONDS, MAX_THREADS, RENDER_BYTES_PER_PIXEL};
 use shadelab_core::{
     builtin_model, face_normal, vertex_normals, Camera, Image, Light, LightKind, Material, Mesh,
     NormalWeighting, Rasterizer, RenderOptions, Renderer, Rgb, Rgb8, Scene, Shading,
 };
+
+use crate::cli::whole;
+use crate::{input_error, output_error, Failure};
 
 /// `shadelab bench`
 #[derive(Debug, Args)]
@@ -33,25 +37,25 @@ pub struct BenchArgs {
     #[arg(long, value_enum, value_delimiter = ',')]
     pub model: Vec<BenchModel>,
     /// Image sizes, WIDTHxHEIGHT (comma-separated or repeated). Default: 512x512,1920x1080.
-    #[arg(long, value_delimiter = ',', value_parser = parse_size)]
+    #[arg(long, value_delimiter = ',', value_parser = parse_size, allow_hyphen_values = true)]
     pub size: Vec<(u32, u32)>,
     /// Shading methods (comma-separated or repeated). Default: all three.
     #[arg(long, value_enum, value_delimiter = ',')]
     pub shading: Vec<BenchShading>,
     /// Thread counts (comma-separated or repeated), each a rayon pool. Default: 1,2.
-    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=256))]
+    #[arg(long, value_delimiter = ',', value_parser = whole::<u32, 1, { MAX_THREADS as u64 }>, allow_hyphen_values = true)]
     pub threads: Vec<u32>,
     /// Rasterizers (comma-separated or repeated). Default: tiled,scanline.
     #[arg(long, value_enum, value_delimiter = ',')]
     pub rasterizer: Vec<BenchRasterizer>,
     /// Timed frames per row (fewer if the row's time budget runs out first).
-    #[arg(long, default_value_t = 31, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    #[arg(long, default_value_t = 31, value_parser = whole::<u32, 1, 100_000>, allow_hyphen_values = true)]
     pub frames: u32,
     /// Untimed frames before timing.
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 3, value_parser = whole::<u32, 0, 100_000>, allow_hyphen_values = true)]
     pub warmup: u32,
     /// Time budget per row, seconds (at least 3 frames are timed whatever it is).
-    #[arg(long, default_value_t = 3.0)]
+    #[arg(long, default_value_t = 3.0, allow_negative_numbers = true)]
     pub budget: f64,
     /// Where the bunny and dragon meshes are; default ../shared/models.
     #[arg(long)]
@@ -148,19 +152,7 @@ impl From<BenchRasterizer> for Rasterizer {
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {s:?}"))?;
-    let parse = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|&v| (1..=16384).contains(&v))
-    };
-    match (parse(w), parse(h)) {
-        (Some(w), Some(h)) => Ok((w, h)),
-        _ => Err(format!("each side must be 1..=16384, got {s:?}")),
-    }
+    crate::cli::parse_size(s)
 }
 
 /// The standard material and lights, as 0–1 colours.
@@ -261,8 +253,15 @@ fn models_dir(args: &BenchArgs) -> Option<PathBuf> {
     candidates.into_iter().find(|d| d.is_dir())
 }
 
-/// Loads the selected models, noting on stderr the ones that are missing.
+/// Loads the selected models, noting on stderr the ones that are missing
+/// when none was asked for by name; a missing `--models-dir`, or a model
+/// asked for by name whose file is missing, is an error.
 fn load_models(args: &BenchArgs, selected: &[BenchModel]) -> anyhow::Result<Vec<Model>> {
+    if let Some(dir) = &args.models_dir {
+        if !dir.is_dir() {
+            bail!("--models-dir {}: no such directory", dir.display());
+        }
+    }
     let dir = models_dir(args);
     let mut models = Vec::new();
     for &kind in selected {
@@ -278,7 +277,16 @@ fn load_models(args: &BenchArgs, selected: &[BenchModel]) -> anyhow::Result<Vec<
                         || "../shared/models (not found)".to_string(),
                         |d| d.display().to_string(),
                     );
-                    eprintln!("note: {} skipped: no {file} in {place}", kind.name());
+                    if !args.model.is_empty() {
+                        bail!(
+                            "{} was asked for, but there is no {file} in {place}",
+                            kind.name()
+                        );
+                    }
+                    crate::warn(&format!(
+                        "note: {} skipped: no {file} in {place}\n",
+                        kind.name()
+                    ));
                     continue;
                 };
                 let mesh = shadelab_io::load_mesh(&path)
@@ -327,7 +335,13 @@ impl Row {
 }
 
 /// Runs `shadelab bench`.
-pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+pub fn run(args: &BenchArgs) -> Result<(), Failure> {
+    if !(args.budget.is_finite() && (0.0..=MAX_BENCH_BUDGET_SECONDS).contains(&args.budget)) {
+        return Err(input_error(anyhow::anyhow!(
+            "--budget must be a number of seconds in 0..={MAX_BENCH_BUDGET_SECONDS}, got {}",
+            args.budget
+        )));
+    }
     let selected = or_all(&args.model, &BenchModel::ALL);
     let sizes = or_all(&args.size, &[(512, 512), (1920, 1080)]);
     let shadings = or_all(
@@ -343,9 +357,19 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         &args.rasterizer,
         &[BenchRasterizer::Tiled, BenchRasterizer::Scanline],
     );
-    let models = load_models(args, &selected)?;
+    let models = load_models(args, &selected).map_err(input_error)?;
+    for model in &models {
+        for &(width, height) in &sizes {
+            crate::memory::check(
+                "bench",
+                Some(&model.mesh),
+                u64::from(width) * u64::from(height),
+                RENDER_BYTES_PER_PIXEL,
+            )?;
+        }
+    }
     if let Some(dir) = &args.export {
-        return export(dir, &models, &sizes, &shadings);
+        return export(dir, &models, &sizes, &shadings).map_err(output_error);
     }
 
     let mut pools = Vec::new();
@@ -353,28 +377,35 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(n as usize)
             .build()
-            .context("cannot start a thread pool")?;
+            .context("cannot start a thread pool")
+            .map_err(output_error)?;
         pools.push((n, pool));
     }
     let machine = Machine::detect();
+    let mut out = std::io::stdout().lock();
     if !args.json {
-        println!(
-            "shadelab bench: {} ({} cores), tiled rasterizer SIMD {}; median of up to {} frames after {} warm-up",
-            machine.cpu, machine.cores, machine.simd, args.frames, args.warmup
-        );
-        for m in &models {
-            println!(
-                "  {:<7} {:>7} triangles  {}",
-                m.kind.name(),
-                m.mesh.triangle_count(),
-                m.source
-            );
-        }
-        println!();
-        println!("{}", Row::header());
+        let mut heading = || -> std::io::Result<()> {
+            writeln!(
+                out,
+                "shadelab bench: {} ({} cores), tiled rasterizer SIMD {}; median of up to {} frames after {} warm-up",
+                machine.cpu, machine.cores, machine.simd, args.frames, args.warmup
+            )?;
+            for m in &models {
+                writeln!(
+                    out,
+                    "  {:<7} {:>7} triangles  {}",
+                    m.kind.name(),
+                    m.mesh.triangle_count(),
+                    m.source
+                )?;
+            }
+            writeln!(out)?;
+            writeln!(out, "{}", Row::header())?;
+            out.flush()
+        };
+        heading().map_err(output_error)?;
     }
     let mut rows = Vec::new();
-    let mut out = std::io::stdout().lock();
     for model in &models {
         for &(width, height) in &sizes {
             let aspect = width as f32 / height as f32;
@@ -388,7 +419,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
                 for &rasterizer in &rasterizers {
                     for (threads, pool) in &pools {
                         let options = options(width, height, shading.into(), rasterizer.into());
-                        let row = time_row(args, pool, &scene, &options)?;
+                        let row = time_row(args, pool, &scene, &options).map_err(input_error)?;
                         let row = Row {
                             model: model.kind.name(),
                             triangles,
@@ -396,8 +427,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
                             ..row
                         };
                         if !args.json {
-                            writeln!(out, "{}", row.line())?;
-                            out.flush()?;
+                            writeln!(out, "{}", row.line())
+                                .and_then(|()| out.flush())
+                                .map_err(output_error)?;
                         }
                         rows.push(row);
                     }
@@ -406,7 +438,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         }
     }
     if args.json {
-        writeln!(out, "{}", json(&machine, args, &rows))?;
+        writeln!(out, "{}", json(&machine, args, &rows))
+            .and_then(|()| out.flush())
+            .map_err(output_error)?;
     }
     Ok(())
 }
@@ -652,7 +686,7 @@ fn export(
                 shadelab_io::write_png(&path, &image)
                     .with_context(|| format!("cannot write {}", path.display()))?;
             }
-            eprintln!("exported {stem}");
+            crate::warn(&format!("exported {stem}\n"));
         }
     }
     Ok(())

@@ -3,6 +3,9 @@
 use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use shadelab_core::limits::{MAX_COST_RUNS, MAX_QUAD_SIZE, MIN_QUAD_SIZE};
+use shadelab_core::raster::scanline::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
+use shadelab_core::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 use shadelab_io::{
     InterpolationName, LightKindName, LightSection, NormalsChoice, PolygonsName, RasterizerName,
     SceneFile, ShadingName, SpecularName,
@@ -78,7 +81,7 @@ pub struct ExplainArgs {
     /// Scene file (TOML); flags override its values.
     pub scene: Option<PathBuf>,
     /// The pixel, X,Y (column, row; row 0 at the top).
-    #[arg(long, value_parser = parse_pixel)]
+    #[arg(long, value_parser = parse_pixel, allow_hyphen_values = true)]
     pub pixel: (u32, u32),
     /// Only this method (default: all three).
     #[arg(long, value_enum)]
@@ -97,13 +100,13 @@ pub struct ProfileArgs {
     /// Scene file (TOML); flags override its values.
     pub scene: Option<PathBuf>,
     /// The row to profile (default: the middle row).
-    #[arg(long, conflicts_with = "line")]
+    #[arg(long, conflicts_with = "line", value_parser = whole::<u32, 0, { u32::MAX as u64 }>, allow_hyphen_values = true)]
     pub row: Option<u32>,
     /// A line instead of a row: X0,Y0,X1,Y1 in pixels.
     #[arg(long, value_parser = parse_line, allow_hyphen_values = true)]
     pub line: Option<[f64; 4]>,
-    /// Output PNG file (the plot).
-    #[arg(short, long)]
+    /// Output PNG file (the plot; `-`: standard output).
+    #[arg(short, long, value_parser = output_path)]
     pub output: PathBuf,
     /// Also print the values, one sample per line.
     #[arg(long)]
@@ -121,8 +124,8 @@ pub struct ProfileArgs {
 pub struct ErrorsArgs {
     /// Scene file (TOML); flags override its values.
     pub scene: Option<PathBuf>,
-    /// Output PNG file: the exact image and the three heat maps.
-    #[arg(short, long)]
+    /// Output PNG file: the exact image and the three heat maps (`-`: standard output).
+    #[arg(short, long, value_parser = output_path)]
     pub output: PathBuf,
     /// The error at the top of the colour scale, 0–255 (default: the largest error).
     #[arg(long, allow_negative_numbers = true)]
@@ -142,10 +145,10 @@ pub struct AccuracyArgs {
     /// sphere, torus, cylinder or cone (default sphere).
     pub scene: Option<PathBuf>,
     /// Tessellation levels, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "6,12,24,48,96")]
+    #[arg(long, value_delimiter = ',', default_value = "6,12,24,48,96", value_parser = whole::<u32, 0, { u32::MAX as u64 }>, allow_hyphen_values = true)]
     pub details: Vec<u32>,
     /// Output PNG file for the plot (the table is always printed).
-    #[arg(short, long)]
+    #[arg(short, long, value_parser = output_path)]
     pub output: Option<PathBuf>,
     /// Language of the plot's labels.
     #[arg(long, value_enum, default_value = "en")]
@@ -158,8 +161,8 @@ pub struct AccuracyArgs {
 /// `shadelab quad`
 #[derive(Debug, Args)]
 pub struct QuadArgs {
-    /// Output PNG file.
-    #[arg(short, long)]
+    /// Output PNG file (`-`: standard output).
+    #[arg(short, long, value_parser = output_path)]
     pub output: PathBuf,
     /// Turns of the quad on the screen, degrees, comma-separated.
     #[arg(
@@ -170,7 +173,7 @@ pub struct QuadArgs {
     )]
     pub angles: Vec<f32>,
     /// Size of each panel in pixels (odd puts a pixel centre on the quad's centre).
-    #[arg(long, default_value_t = 121)]
+    #[arg(long, default_value_t = 121, value_parser = whole::<u32, { MIN_QUAD_SIZE as u64 }, { MAX_QUAD_SIZE as u64 }>, allow_hyphen_values = true)]
     pub size: u32,
 }
 
@@ -180,7 +183,7 @@ pub struct CostArgs {
     /// Scene file (TOML); flags override its values.
     pub scene: Option<PathBuf>,
     /// Renders per method; the median time is reported.
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = whole::<u32, 1, { MAX_COST_RUNS as u64 }>, allow_hyphen_values = true)]
     pub runs: u32,
     /// Scene overrides.
     #[command(flatten)]
@@ -200,8 +203,43 @@ fn parse_overlays(s: &str) -> Result<shadelab_lab::Overlays, String> {
 }
 
 fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
-    let [x, y]: [u32; 2] = parse_numbers(s, "pixel coordinates")?;
+    let [x, y]: [u32; 2] = parse_numbers(s, "pixel coordinates")
+        .map_err(|_| format!("expected X,Y, two whole numbers ≥ 0 (column, row), got {s:?}"))?;
     Ok((x, y))
+}
+
+/// A whole number in `LO..=HI`, or a message that says the range.
+pub fn whole<T: TryFrom<u64>, const LO: u64, const HI: u64>(s: &str) -> Result<T, String> {
+    s.trim()
+        .parse::<u64>()
+        .ok()
+        .filter(|v| (LO..=HI).contains(v))
+        .and_then(|v| T::try_from(v).ok())
+        .ok_or_else(|| {
+            if HI == u64::from(u32::MAX) {
+                format!("must be a whole number ≥ {LO}, got {s:?}")
+            } else {
+                format!("must be a whole number in {LO}..={HI}, got {s:?}")
+            }
+        })
+}
+
+/// A value that is not empty.
+fn non_empty(s: &str) -> Result<String, String> {
+    if s.trim().is_empty() {
+        Err("must not be empty".to_owned())
+    } else {
+        Ok(s.to_owned())
+    }
+}
+
+/// An output path: not empty (`-` is standard output).
+fn output_path(s: &str) -> Result<PathBuf, String> {
+    if s.is_empty() {
+        Err("must not be empty: name a file, or `-` for standard output".to_owned())
+    } else {
+        Ok(PathBuf::from(s))
+    }
 }
 
 fn parse_line(s: &str) -> Result<[f64; 4], String> {
@@ -219,7 +257,7 @@ pub struct ViewArgs {
     #[arg(long, default_value = "127.0.0.1")]
     pub host: std::net::IpAddr,
     /// Port to listen on (0: any free port).
-    #[arg(long, default_value_t = 8080)]
+    #[arg(long, default_value_t = 8080, value_parser = whole::<u16, 0, 65535>, allow_hyphen_values = true)]
     pub port: u16,
     /// Do not open a browser.
     #[arg(long)]
@@ -237,8 +275,8 @@ pub struct RenderArgs {
     /// Shading method.
     #[arg(long, value_enum)]
     pub shading: Option<ShadingArg>,
-    /// Output PNG file.
-    #[arg(short, long)]
+    /// Output PNG file (`-`: standard output).
+    #[arg(short, long, value_parser = output_path)]
     pub output: PathBuf,
     /// Scene overrides.
     #[command(flatten)]
@@ -253,8 +291,8 @@ pub struct RenderArgs {
 pub struct CompareArgs {
     /// Scene file (TOML); flags override its values.
     pub scene: Option<PathBuf>,
-    /// Output PNG file.
-    #[arg(short, long)]
+    /// Output PNG file (`-`: standard output).
+    #[arg(short, long, value_parser = output_path)]
     pub output: PathBuf,
     /// Scene overrides (`--size` is the size of each panel).
     #[command(flatten)]
@@ -268,16 +306,16 @@ pub struct CompareArgs {
 #[derive(Debug, Clone, Args, Default)]
 pub struct SceneOverrides {
     /// Built-in model name or mesh file (.obj, .stl, .ply, .gltf, .glb); `shadelab models` lists the built-ins.
-    #[arg(long)]
+    #[arg(long, value_parser = non_empty)]
     pub model: Option<String>,
     /// Tessellation level of a built-in model.
-    #[arg(long)]
+    #[arg(long, value_parser = whole::<u32, 0, { u32::MAX as u64 }>, allow_hyphen_values = true)]
     pub detail: Option<u32>,
     /// Image size, WIDTHxHEIGHT.
-    #[arg(long, value_parser = parse_size)]
+    #[arg(long, value_parser = parse_size, allow_hyphen_values = true)]
     pub size: Option<(u32, u32)>,
     /// Ambient light colour, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb)]
+    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
     pub ambient: Option<[i64; 3]>,
     /// Ambient light intensity.
     #[arg(long, allow_negative_numbers = true)]
@@ -286,19 +324,19 @@ pub struct SceneOverrides {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub light_pos: Option<[f32; 3]>,
     /// Colour of the (first) light, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb)]
+    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
     pub light_color: Option<[i64; 3]>,
     /// Intensity of the (first) light.
     #[arg(long, allow_negative_numbers = true)]
     pub light_intensity: Option<f32>,
     /// Ambient reflectance Ka, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb)]
+    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
     pub ka: Option<[i64; 3]>,
     /// Diffuse reflectance Kd, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb)]
+    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
     pub kd: Option<[i64; 3]>,
     /// Specular reflectance Ks, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb)]
+    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
     pub ks: Option<[i64; 3]>,
     /// Specular exponent.
     #[arg(long, allow_negative_numbers = true)]
@@ -313,7 +351,7 @@ pub struct SceneOverrides {
     #[arg(long, value_enum)]
     pub normals: Option<NormalsArg>,
     /// No smoothing across edges sharper than this, degrees.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub crease_angle: Option<f32>,
     /// Attribute interpolation.
     #[arg(long, value_enum)]
@@ -325,7 +363,7 @@ pub struct SceneOverrides {
     #[arg(long)]
     pub gouraud_specular: bool,
     /// Background colour, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb)]
+    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
     pub background: Option<[i64; 3]>,
     /// Which rasterizer draws: the tiled SIMD one (default) or the scanline reference.
     #[arg(long, value_enum)]
@@ -337,13 +375,13 @@ pub struct SceneOverrides {
     #[arg(long, value_enum)]
     pub specular: Option<SpecularArg>,
     /// Step attributes in fixed point with this many fraction bits (scanline rasterizer).
-    #[arg(long, value_name = "BITS")]
+    #[arg(long, value_name = "BITS", value_parser = whole::<u32, { MIN_FRACTION_BITS as u64 }, { MAX_FRACTION_BITS as u64 }>, allow_hyphen_values = true)]
     pub fixed_point: Option<u32>,
     /// Draw with an indexed palette of this many shades of the material colour (scanline rasterizer).
-    #[arg(long, value_name = "SHADES")]
+    #[arg(long, value_name = "SHADES", value_parser = whole::<u32, 2, 256>, allow_hyphen_values = true)]
     pub palette: Option<u32>,
     /// The palette entry of the darkest shade.
-    #[arg(long, value_name = "ENTRY", requires = "palette")]
+    #[arg(long, value_name = "ENTRY", requires = "palette", value_parser = whole::<u32, 0, 254>, allow_hyphen_values = true)]
     pub palette_offset: Option<u32>,
 }
 
@@ -444,19 +482,26 @@ fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
     Ok(v)
 }
 
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {s:?}"))?;
-    let w: u32 = w
-        .trim()
-        .parse()
-        .map_err(|_| format!("{w:?} is not a width"))?;
-    let h: u32 = h
-        .trim()
-        .parse()
-        .map_err(|_| format!("{h:?} is not a height"))?;
-    Ok((w, h))
+/// `WIDTHxHEIGHT`, each side 1..=[`MAX_IMAGE_SIDE`] and at most
+/// [`MAX_IMAGE_PIXELS`] in all.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let range = || {
+        format!(
+            "expected WIDTHxHEIGHT, each a whole number in 1..={MAX_IMAGE_SIDE} and at most \
+             {MAX_IMAGE_PIXELS} pixels in all, got {s:?}"
+        )
+    };
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(range)?;
+    let side = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|v| (1..=MAX_IMAGE_SIDE).contains(v))
+    };
+    match (side(w), side(h)) {
+        (Some(w), Some(h)) if u64::from(w) * u64::from(h) <= MAX_IMAGE_PIXELS => Ok((w, h)),
+        _ => Err(range()),
+    }
 }
 
 impl SceneOverrides {

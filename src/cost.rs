@@ -3,6 +3,7 @@
 use std::io::Write;
 use std::time::Instant;
 
+use shadelab_core::limits::RENDER_BYTES_PER_PIXEL;
 use shadelab_core::Shading;
 use shadelab_lab::measure_cost;
 
@@ -18,6 +19,7 @@ pub fn run(args: &CostArgs) -> Result<(), Failure> {
         Some((480, 480)),
         None,
     )?;
+    loaded.check_memory("cost", RENDER_BYTES_PER_PIXEL)?;
     let start = Instant::now();
     let costs = measure_cost(
         &loaded.scene,

@@ -5,6 +5,7 @@ use std::io::Write;
 
 use anyhow::Context;
 use plotters::prelude::*;
+use shadelab_core::limits::ERRORS_BYTES_PER_PIXEL;
 use shadelab_core::{Image, Rgb8};
 use shadelab_io::write_png;
 use shadelab_lab::{error_maps, exact_image, heat_bar, heat_scale, Texts};
@@ -29,6 +30,7 @@ pub fn run(args: &ErrorsArgs) -> Result<(), Failure> {
         Some("sphere"),
     )?;
     check_output(&args.output, &loaded.inputs)?;
+    loaded.check_memory("errors", ERRORS_BYTES_PER_PIXEL)?;
     let surface = require_exact_surface(&loaded.file)?;
     if let Some(s) = args.scale {
         if !(s.is_finite() && s > 0.0) {

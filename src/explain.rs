@@ -2,6 +2,7 @@
 
 use std::io::Write;
 
+use shadelab_core::limits::RENDER_BYTES_PER_PIXEL;
 use shadelab_core::Shading;
 use shadelab_lab::{inspect, inspection_text, Texts};
 
@@ -17,6 +18,7 @@ pub fn run(args: &ExplainArgs) -> Result<(), Failure> {
         Some((480, 480)),
         None,
     )?;
+    loaded.check_memory("explain", RENDER_BYTES_PER_PIXEL)?;
     let (x, y) = args.pixel;
     let options = &loaded.options;
     if x >= options.width || y >= options.height {

@@ -53,6 +53,15 @@ pub fn load(
     })
 }
 
+impl Loaded {
+    /// Fails when drawing this scene at `bytes_per_pixel` would need more
+    /// memory than the limit ([`crate::memory::check`]).
+    pub fn check_memory(&self, command: &str, bytes_per_pixel: u64) -> Result<(), Failure> {
+        let pixels = u64::from(self.options.width) * u64::from(self.options.height);
+        crate::memory::check(command, Some(&self.scene.mesh), pixels, bytes_per_pixel)
+    }
+}
+
 /// The exact surface of the scene's model, placed as the mesh is.
 pub fn exact_surface(file: &SceneFile) -> Option<Surface> {
     let source = file.model.source.as_deref().unwrap_or("teapot");

@@ -12,6 +12,7 @@ mod errors;
 mod explain;
 mod lab;
 mod label;
+mod memory;
 mod plot;
 mod profile;
 mod quad;
@@ -25,8 +26,10 @@ use std::time::Instant;
 
 use anyhow::Context;
 use clap::Parser;
+use shadelab_core::limits::{COMPARE_BYTES_PER_PIXEL, MAX_THREADS, RENDER_BYTES_PER_PIXEL};
 use shadelab_core::{
-    render, Image, RenderOptions, RenderStats, Rgb8, Scene, Shading, BUILTIN_MODELS,
+    escape_message, escape_token, render, Image, RenderOptions, RenderStats, Rgb8, Scene, Shading,
+    BUILTIN_MODELS,
 };
 use shadelab_io::{model_path, write_png, SceneFile};
 use shadelab_lab::{draw_overlays, Overlays};
@@ -56,25 +59,71 @@ fn output_error(error: impl Into<anyhow::Error>) -> Failure {
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
+        Err(e) if e.use_stderr() => {
+            // The arguments are repeated in clap's message: escaped like
+            // every other message.
+            warn(&e.render().to_string());
+            return ExitCode::from(2);
+        }
+        // Help and version, on standard output.
         Err(e) => {
-            let _ = e.print();
-            return if e.use_stderr() {
-                ExitCode::from(2)
-            } else {
-                ExitCode::SUCCESS
+            return match e.print() {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(io) if io.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+                Err(io) => {
+                    warn(&format!("error: cannot write to standard output: {io}\n"));
+                    ExitCode::from(1)
+                }
             };
         }
     };
-    match run(cli) {
+    match configure_threads().and_then(|()| run(cli)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
             if is_broken_pipe(&f.error) {
                 return ExitCode::SUCCESS;
             }
-            eprintln!("error: {}", message(&f.error));
+            warn(&format!("error: {}\n", message(&f.error)));
             ExitCode::from(f.code)
         }
     }
+}
+
+/// Writes `text` to standard error, escaped ([`escape_message`]); a
+/// standard error that is closed or full loses it, and nothing panics.
+pub(crate) fn warn(text: &str) {
+    let _ = std::io::stderr().write_all(escape_message(text).as_bytes());
+}
+
+/// Starts rayon's global pool with the number of threads
+/// `RAYON_NUM_THREADS` asks for (0 or unset: one per core), at most
+/// [`MAX_THREADS`], so that a wrong value is an error rather than a panic
+/// inside the first frame.
+fn configure_threads() -> Result<(), Failure> {
+    let threads = match std::env::var("RAYON_NUM_THREADS") {
+        Err(std::env::VarError::NotPresent) => 0,
+        Ok(v) => match v.trim().parse::<usize>() {
+            Ok(n) if n <= MAX_THREADS => n,
+            _ => {
+                return Err(input_error(anyhow::anyhow!(
+                    "RAYON_NUM_THREADS={}: must be a whole number of threads, 0..={MAX_THREADS} \
+                     (0: one per core)",
+                    escape_token(&v)
+                )));
+            }
+        },
+        Err(std::env::VarError::NotUnicode(_)) => {
+            return Err(input_error(anyhow::anyhow!(
+                "RAYON_NUM_THREADS is not text: must be a whole number of threads, \
+                 0..={MAX_THREADS}"
+            )));
+        }
+    };
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build_global()
+        .with_context(|| format!("cannot start {threads} threads"))
+        .map_err(output_error)
 }
 
 /// The error and its causes, joined with ": " as `{:#}` does, but leaving out
@@ -111,6 +160,12 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             let (scene, options, inputs) = resolve(&file, args.scene.as_deref())?;
             check_output(&args.output, &inputs)?;
+            memory::check(
+                "render",
+                Some(&scene.mesh),
+                pixels(&options),
+                RENDER_BYTES_PER_PIXEL,
+            )?;
             let (mut image, stats, ms) = timed_render(&scene, &options)?;
             if let Some(overlays) = args.overlay.overlay {
                 draw_overlays(&mut image, &scene, &options, overlays).map_err(input_error)?;
@@ -133,7 +188,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Accuracy(args) => accuracy::run(&args),
         Command::Quad(args) => quad::run(&args),
         Command::Cost(args) => cost::run(&args),
-        Command::Bench(args) => bench::run(&args).map_err(input_error),
+        Command::Bench(args) => bench::run(&args),
         Command::Models => {
             let mut out = std::io::stdout().lock();
             let mut list = || -> std::io::Result<()> {
@@ -184,7 +239,12 @@ fn resolve(
         .and_then(Path::parent)
         .map(Path::to_path_buf)
         .unwrap_or_default();
-    let (scene, options) = file.resolve(&base_dir).map_err(input_error)?;
+    let mut warnings = Vec::new();
+    let result = file.resolve_reporting(&base_dir, &mut warnings);
+    for w in &warnings {
+        warn(&format!("warning: {w}\n"));
+    }
+    let (scene, options) = result.map_err(input_error)?;
     let mut inputs: Vec<PathBuf> = scene_path.map(Path::to_path_buf).into_iter().collect();
     if let Some(source) = &file.model.source {
         let model = model_path(source, &base_dir);
@@ -212,6 +272,11 @@ fn check_output(output: &Path, inputs: &[PathBuf]) -> Result<(), Failure> {
     Ok(())
 }
 
+/// The pixels of one frame of `options`.
+fn pixels(options: &RenderOptions) -> u64 {
+    u64::from(options.width) * u64::from(options.height)
+}
+
 fn timed_render(
     scene: &Scene,
     options: &RenderOptions,
@@ -222,8 +287,8 @@ fn timed_render(
 }
 
 fn report(shading: Shading, options: &RenderOptions, stats: &RenderStats, ms: f64) {
-    eprintln!(
-        "{:<8} {}x{}  {:>8.2} ms  {} polygons rasterized ({} culled)  {} pixels shaded  {} lighting evaluations",
+    warn(&format!(
+        "{:<8} {}x{}  {:>8.2} ms  {} polygons rasterized ({} culled)  {} pixels shaded  {} lighting evaluations\n",
         shading.title(),
         options.width,
         options.height,
@@ -232,7 +297,7 @@ fn report(shading: Shading, options: &RenderOptions, stats: &RenderStats, ms: f6
         stats.culled,
         stats.fragments_shaded,
         stats.lighting_evaluations
-    );
+    ));
 }
 
 /// Height of the label band above each panel.
@@ -255,6 +320,12 @@ fn compare(
     overrides.apply(&mut file, scene_path.is_some());
     let (scene, options, inputs) = resolve(&file, scene_path)?;
     check_output(output, &inputs)?;
+    memory::check(
+        "compare",
+        Some(&scene.mesh),
+        pixels(&options),
+        COMPARE_BYTES_PER_PIXEL,
+    )?;
 
     let (w, h) = (options.width, options.height);
     let total_width = 3 * w + 2 * GAP;

@@ -5,6 +5,7 @@ use std::io::Write;
 
 use anyhow::Context;
 use plotters::prelude::*;
+use shadelab_core::limits::RENDER_BYTES_PER_PIXEL;
 use shadelab_core::{render, Image, RenderOptions, Rgb8, Shading};
 use shadelab_io::write_png;
 use shadelab_lab::{profile, CurveKind, Profile, ProfileLine, Texts};
@@ -27,6 +28,7 @@ pub fn run(args: &ProfileArgs) -> Result<(), Failure> {
         None,
     )?;
     check_output(&args.output, &loaded.inputs)?;
+    loaded.check_memory("profile", RENDER_BYTES_PER_PIXEL)?;
     let options = loaded.options;
     let line = match (args.row, args.line) {
         (_, Some([x0, y0, x1, y1])) => ProfileLine::Segment {

@@ -6,7 +6,10 @@ use std::io::Write;
 
 use anyhow::Context;
 use plotters::prelude::*;
-use shadelab_core::{Image, RenderError, Rgb8};
+use shadelab_core::limits::{
+    MAX_QUAD_ANGLES, MAX_QUAD_DEGREES, MAX_QUAD_SIZE, MIN_QUAD_SIZE, QUAD_BYTES_PER_PIXEL,
+};
+use shadelab_core::{format_number, Image, RenderError, Rgb8};
 use shadelab_io::write_png;
 use shadelab_lab::quad_study;
 
@@ -21,17 +24,35 @@ const GAP: u32 = 6;
 
 /// Writes the sheet and prints the centre values.
 pub fn run(args: &QuadArgs) -> Result<(), Failure> {
-    if args.angles.is_empty() || args.angles.iter().any(|a| !a.is_finite()) {
+    if !(1..=MAX_QUAD_ANGLES).contains(&args.angles.len()) {
         return Err(input_error(anyhow::anyhow!(
-            "--angles needs finite numbers"
+            "--angles takes 1..={MAX_QUAD_ANGLES} turns, got {}",
+            args.angles.len()
         )));
     }
-    if !(9..=1024).contains(&args.size) {
+    if let Some(a) = args
+        .angles
+        .iter()
+        .find(|a| !(a.is_finite() && a.abs() <= MAX_QUAD_DEGREES))
+    {
         return Err(input_error(anyhow::anyhow!(
-            "--size must be 9..=1024, got {}",
+            "--angles: each turn must be a number of degrees in -{MAX_QUAD_DEGREES}..={MAX_QUAD_DEGREES}, got {}",
+            format_number(*a)
+        )));
+    }
+    if !(MIN_QUAD_SIZE..=MAX_QUAD_SIZE).contains(&args.size) {
+        return Err(input_error(anyhow::anyhow!(
+            "--size must be {MIN_QUAD_SIZE}..={MAX_QUAD_SIZE}, got {}",
             args.size
         )));
     }
+    let panel = u64::from(args.size) * u64::from(args.size);
+    crate::memory::check(
+        "quad",
+        None,
+        2 * args.angles.len() as u64 * panel,
+        QUAD_BYTES_PER_PIXEL,
+    )?;
     let samples = quad_study(&args.angles, args.size).map_err(|e: RenderError| input_error(e))?;
     let s = args.size;
     let cols = samples.len() as u32;

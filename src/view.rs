@@ -105,13 +105,14 @@ fn export(site: &Site, dir: &Path) -> anyhow::Result<()> {
         shadelab_io::write_atomic(&path, |out| out.write_all(bytes))
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
-    println!(
+    writeln!(
+        std::io::stdout().lock(),
         "wrote the viewer ({} files) to {}; serve that directory with any web server \
          (it must send .wasm files as application/wasm)",
         site.files().len(),
         dir.display()
-    );
-    Ok(())
+    )
+    .context("cannot write to standard output")
 }
 
 #[cfg(test)]

@@ -135,7 +135,10 @@ fn serves_on_loopback_by_default_with_the_right_content_types() {
         assert!(header(&headers, "content-security-policy").starts_with("default-src 'self'"));
         assert!(body.starts_with(starts), "{target}");
     }
-    let (status, headers, body) = viewer.raw("HEAD /shadelab.wasm HTTP/1.1\r\n\r\n");
+    let (status, headers, body) = viewer.raw(&format!(
+        "HEAD /shadelab.wasm HTTP/1.1\r\nHost: {}\r\n\r\n",
+        viewer.addr
+    ));
     assert_eq!(status, 200);
     assert!(body.is_empty());
     assert!(header(&headers, "content-length").parse::<usize>().unwrap() > 100_000);
@@ -168,7 +171,10 @@ fn serves_nothing_but_its_own_files() {
             String::from_utf8_lossy(&body)
         );
     }
-    let (status, headers, _) = viewer.raw("POST / HTTP/1.1\r\nContent-Length: 0\r\n\r\n");
+    let (status, headers, _) = viewer.raw(&format!(
+        "POST / HTTP/1.1\r\nHost: {}\r\nContent-Length: 0\r\n\r\n",
+        viewer.addr
+    ));
     assert_eq!(status, 405);
     assert_eq!(header(&headers, "allow"), "GET, HEAD");
     assert_eq!(viewer.raw("GET / FTP/1.0\r\n\r\n").0, 400);
