@@ -127,3 +127,68 @@ f 1 2 4
 f 1 4 3
 f 2 3 4
 ";
+
+/// The bytes of `floats`, little-endian.
+pub fn f32_bytes(floats: &[f32]) -> Vec<u8> {
+    floats.iter().flat_map(|f| f.to_le_bytes()).collect()
+}
+
+/// One triangle's three positions, as a glTF buffer (36 bytes).
+pub fn triangle_buffer() -> Vec<u8> {
+    f32_bytes(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0])
+}
+
+/// `bytes` as a base64 `data:` URI.
+pub fn data_uri(bytes: &[u8]) -> String {
+    const TABLE: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::from("data:application/octet-stream;base64,");
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                out.push(TABLE[(n >> (18 - 6 * k)) as usize & 63] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+/// A glTF document drawing triangles from one buffer of `byte_length`
+/// bytes at `uri`: `primitives` primitives per mesh, all using accessor 0
+/// (`vertices` positions, not indexed), and `nodes` nodes each drawing the
+/// mesh; `extra` is spliced in at the top level (`"images":[…]`).
+pub fn gltf_doc(
+    uri: &str,
+    byte_length: usize,
+    vertices: usize,
+    primitives: usize,
+    nodes: usize,
+    extra: &str,
+) -> String {
+    let primitive = r#"{"attributes":{"POSITION":0},"mode":4}"#;
+    let prims = vec![primitive; primitives].join(",");
+    let node_list = vec![r#"{"mesh":0}"#; nodes].join(",");
+    let roots = (0..nodes)
+        .map(|k| k.to_string())
+        .collect::<Vec<_>>()
+        .join(",");
+    let extra = if extra.is_empty() {
+        String::new()
+    } else {
+        format!(",{extra}")
+    };
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[{roots}]}}],
+"nodes":[{node_list}],"meshes":[{{"primitives":[{prims}]}}],
+"buffers":[{{"uri":"{uri}","byteLength":{byte_length}}}],
+"bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":{byte_length}}}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":{vertices},"type":"VEC3","min":[0,0,0],"max":[1,1,0]}}]{extra}}}"#
+    )
+}
