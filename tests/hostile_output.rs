@@ -13,7 +13,7 @@ use hostile::*;
 
 const SMALL: &[&str] = &["--model", "cube", "--size", "16x16"];
 
-fn render_args<'a>(output: &'a str) -> Vec<&'a str> {
+fn render_args(output: &str) -> Vec<&str> {
     let mut args = vec!["render"];
     args.extend_from_slice(SMALL);
     args.extend_from_slice(&["-o", output]);

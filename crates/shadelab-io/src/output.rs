@@ -35,7 +35,7 @@ pub const STDOUT_PATH: &str = "-";
 /// Writes a file through `write`, atomically: a temporary file in the same
 /// folder is renamed over `path` only once `write` succeeded and the data
 /// reached the disk. `-` writes to standard output instead (flushed at the
-/// end); see the [module documentation](self) for what is refused and why.
+/// end); see the module documentation of `shadelab_io::output` for what is refused and why.
 ///
 /// `write` gets a buffered writer; it need not buffer or flush itself.
 ///
