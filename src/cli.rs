@@ -45,6 +45,8 @@ pub enum Command {
     View(ViewArgs),
     /// Time the standard scenes: ms/frame, Mpixel/s, Mtriangles/s per model, size, method, rasterizer, threads.
     Bench(crate::bench::BenchArgs),
+    /// Render many meshes (a JSON Lines or CSV manifest): views, modes, PNGs and an index; resumable, shardable.
+    Batch(crate::batch::BatchArgs),
 }
 
 /// `--lang`

@@ -5,6 +5,7 @@
 //! model file, out-of-range values); 1 when the output cannot be written.
 
 mod accuracy;
+mod batch;
 mod bench;
 mod cli;
 mod cost;
@@ -134,6 +135,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Quad(args) => quad::run(&args),
         Command::Cost(args) => cost::run(&args),
         Command::Bench(args) => bench::run(&args).map_err(input_error),
+        Command::Batch(args) => batch::run(&args),
         Command::Models => {
             let mut out = std::io::stdout().lock();
             let mut list = || -> std::io::Result<()> {

@@ -21,8 +21,8 @@ mod run;
 pub use index::{IndexWriter, Row, Status};
 pub use manifest::{Entry, LineError, Manifest, ManifestFormat, MAX_LINE_BYTES};
 pub use plan::{
-    check_id, default_id, output_name, parse_modes, parse_size, Shard, View, Views,
-    MAX_ID_BYTES, MAX_RING_VIEWS,
+    check_id, default_id, output_name, parse_modes, parse_size, Shard, View, Views, MAX_ID_BYTES,
+    MAX_RING_VIEWS,
 };
 pub use prepared::PreparedMesh;
 pub use progress::Progress;

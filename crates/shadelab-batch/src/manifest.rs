@@ -226,7 +226,10 @@ impl Manifest {
             // Skip the rest of the over-long line, a bounded chunk at a time.
             loop {
                 self.buf.clear();
-                match (&mut self.reader).take(limit).read_until(b'\n', &mut self.buf) {
+                match (&mut self.reader)
+                    .take(limit)
+                    .read_until(b'\n', &mut self.buf)
+                {
                     Ok(0) | Err(_) => break,
                     Ok(_) if self.buf.last() == Some(&b'\n') => break,
                     Ok(_) => {}
@@ -330,7 +333,10 @@ fn csv_fields(text: &str) -> Result<Vec<String>, String> {
         Ok(false) => return Ok(Vec::new()),
         Err(e) => return Err(format!("not a CSV record: {e}")),
     }
-    if reader.read_record(&mut csv::StringRecord::new()).unwrap_or(true) {
+    if reader
+        .read_record(&mut csv::StringRecord::new())
+        .unwrap_or(true)
+    {
         return Err("a quoted field must not span lines".into());
     }
     Ok(record.iter().map(str::to_owned).collect())
@@ -394,7 +400,9 @@ fn parse_json_line(text: &str, line: u64) -> Result<Entry, String> {
     let size = match raw.size {
         None => None,
         Some(SizeValue::Text(t)) => Some(parse_size(&t).map_err(key("size"))?),
-        Some(SizeValue::Pair([w, h])) => Some(parse_size(&format!("{w}x{h}")).map_err(key("size"))?),
+        Some(SizeValue::Pair([w, h])) => {
+            Some(parse_size(&format!("{w}x{h}")).map_err(key("size"))?)
+        }
     };
     let modes = match raw.shading {
         None => None,
@@ -430,7 +438,10 @@ mod tests {
         );
         assert_eq!(got.len(), 2);
         let a = got[0].as_ref().unwrap();
-        assert_eq!((a.line, a.path.as_str(), a.id.as_deref()), (1, "a.obj", None));
+        assert_eq!(
+            (a.line, a.path.as_str(), a.id.as_deref()),
+            (1, "a.obj", None)
+        );
         let b = got[1].as_ref().unwrap();
         assert_eq!(b.line, 3);
         assert_eq!(b.views, Some(Views::Cube));
@@ -473,7 +484,10 @@ mod tests {
             ManifestFormat::Csv,
         );
         let a = got[0].as_ref().unwrap();
-        assert_eq!((a.path.as_str(), a.id.as_deref(), a.views), ("a, b.obj", Some("first"), None));
+        assert_eq!(
+            (a.path.as_str(), a.id.as_deref(), a.views),
+            ("a, b.obj", Some("first"), None)
+        );
         let c = got[1].as_ref().unwrap();
         assert_eq!((c.id.as_deref(), c.views), (None, Some(Views::Cube)));
         assert!(got[2].as_ref().unwrap_err().message.contains("1 fields"));
@@ -491,7 +505,9 @@ mod tests {
             .err()
             .map(|e| e.to_string())
         };
-        assert!(open("path,colour\n").unwrap().contains("unknown column \"colour\""));
+        assert!(open("path,colour\n")
+            .unwrap()
+            .contains("unknown column \"colour\""));
         assert!(open("id\n").unwrap().contains("no \"path\" column"));
         assert!(open("").unwrap().contains("no header"));
         assert_eq!(open("path, id\n"), None);

@@ -55,9 +55,7 @@ impl Views {
         if (1..=MAX_RING_VIEWS).contains(&n) {
             Ok(Views::Ring(n))
         } else {
-            Err(format!(
-                "must be 1..={MAX_RING_VIEWS} or \"cube\", got {n}"
-            ))
+            Err(format!("must be 1..={MAX_RING_VIEWS} or \"cube\", got {n}"))
         }
     }
 
@@ -129,11 +127,7 @@ pub fn parse_modes(s: &str) -> Result<Vec<Shading>, String> {
             "gouraud" => &[Shading::Gouraud],
             "phong" => &[Shading::Phong],
             "all" => &Shading::ALL,
-            _ => {
-                return Err(format!(
-                    "{word:?} is not flat, gouraud, phong or all"
-                ))
-            }
+            _ => return Err(format!("{word:?} is not flat, gouraud, phong or all")),
         };
         for m in add {
             if !modes.contains(m) {
@@ -181,9 +175,7 @@ impl Shard {
     /// When `count` is 0 or `index` is not below it.
     pub fn new(index: u32, count: u32) -> Result<Shard, String> {
         if count == 0 || index >= count {
-            return Err(format!(
-                "needs 0 <= I < N in I/N, got {index}/{count}"
-            ));
+            return Err(format!("needs 0 <= I < N in I/N, got {index}/{count}"));
         }
         Ok(Shard { index, count })
     }
@@ -238,8 +230,7 @@ pub const MAX_ID_BYTES: usize = 200;
 /// Says what an id may contain.
 pub fn check_id(id: &str) -> Result<(), String> {
     let allowed = |c: char| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-');
-    if id.is_empty() || id.len() > MAX_ID_BYTES || id.starts_with('.') || !id.chars().all(allowed)
-    {
+    if id.is_empty() || id.len() > MAX_ID_BYTES || id.starts_with('.') || !id.chars().all(allowed) {
         return Err(format!(
             "id \"{}\" is not usable: 1 to {MAX_ID_BYTES} letters, digits, '.', '_' or '-', not starting with '.'",
             crate::escape(id)
@@ -288,7 +279,10 @@ mod tests {
     fn ring_views_are_evenly_spaced_and_named() {
         let v = Views::Ring(4).list();
         let got: Vec<(&str, f32)> = v.iter().map(|v| (v.name.as_str(), v.yaw)).collect();
-        assert_eq!(got, [("v00", 0.0), ("v01", 90.0), ("v02", 180.0), ("v03", 270.0)]);
+        assert_eq!(
+            got,
+            [("v00", 0.0), ("v01", 90.0), ("v02", 180.0), ("v03", 270.0)]
+        );
         assert_eq!(Views::Cube.list().len(), 6);
         assert_eq!("cube".parse(), Ok(Views::Cube));
         assert_eq!("6".parse(), Ok(Views::Ring(6)));

@@ -84,6 +84,11 @@ impl PreparedMesh {
         self.scene.mesh.triangle_count()
     }
 
+    /// The scene as the last frame drew it (or as loaded).
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
     /// The options every frame shares (size, background, …).
     pub fn options(&self) -> &RenderOptions {
         &self.options
@@ -103,8 +108,12 @@ impl PreparedMesh {
         let mut file = self.file.clone();
         file.render.yaw = Some(file.render.yaw.unwrap_or(0.0) + view.yaw);
         file.render.pitch = Some(file.render.pitch.unwrap_or(0.0) + view.pitch);
-        file.update_scene_with_file_material(&mut self.scene, &self.options, self.material.as_ref())
-            .map_err(|e| e.to_string())?;
+        file.update_scene_with_file_material(
+            &mut self.scene,
+            &self.options,
+            self.material.as_ref(),
+        )
+        .map_err(|e| e.to_string())?;
         let options = RenderOptions {
             shading: mode,
             ..self.options

@@ -1,12 +1,15 @@
 //! A batch run: every mesh of a manifest's share, every view and mode, into PNGs.
 //!
-//! **Throughput.** `jobs` workers (one per core by default) each take the
+//! **Throughput.** `jobs` workers (two per core by default) each take the
 //! next manifest entry, load the mesh, draw its frames and encode its PNGs;
 //! a worker draws its frames in its own pool of `frame_threads` threads (one
 //! by default). Parallel across meshes, a worker's loading, drawing and
 //! encoding overlap with the others', which keeps every core busy on the
 //! many small frames of a batch; drawing one frame on all cores leaves them
-//! waiting on each other's loading and encoding (see BENCHMARKS.md).
+//! waiting on each other's loading and encoding. Two workers per core rather
+//! than one because each PNG is synced to disk before it is renamed into
+//! place: while one worker waits on the disk, the other draws (measured in
+//! BENCHMARKS.md: 2 jobs 60, 3 jobs 83, 4 jobs 94 images/s on 2 cores).
 //!
 //! **Memory** is bounded by the meshes in flight, at most `jobs` of them:
 //! workers pull entries from the manifest as they become free, the manifest
@@ -61,7 +64,7 @@ pub struct BatchConfig {
     pub force: bool,
     /// The folder mesh paths must stay inside; `None`: the manifest's folder.
     pub root: Option<PathBuf>,
-    /// Meshes in flight at once; 0: one per core.
+    /// Meshes in flight at once; 0: two per core.
     pub jobs: usize,
     /// Threads drawing each worker's frames; 0 is taken as 1.
     pub frame_threads: usize,
@@ -75,7 +78,7 @@ pub struct BatchConfig {
 
 impl BatchConfig {
     /// A run of `manifest` into `output` with the defaults: one view, the
-    /// settings' method, the whole manifest, resuming, one worker per core.
+    /// settings' method, the whole manifest, resuming, two workers per core.
     pub fn new(manifest: impl Into<PathBuf>, output: impl Into<PathBuf>) -> BatchConfig {
         BatchConfig {
             manifest: manifest.into(),
@@ -171,7 +174,10 @@ struct Run<'a> {
 /// folder, index); failures of single meshes are rows of the index.
 pub fn run(config: &BatchConfig) -> Result<Summary, BatchError> {
     let start = Instant::now();
-    config.settings.render_options().map_err(BatchError::Settings)?;
+    config
+        .settings
+        .render_options()
+        .map_err(BatchError::Settings)?;
     let modes = match &config.modes {
         Some(m) if !m.is_empty() => m.clone(),
         _ => vec![config
@@ -214,7 +220,7 @@ pub fn run(config: &BatchConfig) -> Result<Summary, BatchError> {
         bad_lines: AtomicU64::new(0),
     };
     let jobs = match config.jobs {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        0 => 2 * std::thread::available_parallelism().map_or(1, |n| n.get()),
         n => n,
     };
     let manifest = Mutex::new(manifest);
@@ -263,10 +269,7 @@ fn count_share(path: &Path, shard: Shard) -> Result<u64, BatchError> {
 
 /// The entry's id: as given, or made from its path.
 fn entry_id(entry: &Entry) -> String {
-    entry
-        .id
-        .clone()
-        .unwrap_or_else(|| default_id(&entry.path))
+    entry.id.clone().unwrap_or_else(|| default_id(&entry.path))
 }
 
 impl Run<'_> {
@@ -280,14 +283,46 @@ impl Run<'_> {
         pool.install(|| {
             let mut image = Image::filled(1, 1, Rgb8::default());
             loop {
-                let item = manifest.lock().unwrap_or_else(|e| e.into_inner()).next();
+                // Ids are claimed in manifest order, under the manifest's lock,
+                // so the first line with an id always wins it.
+                let (item, duplicate_of) = {
+                    let mut manifest = manifest.lock().unwrap_or_else(|e| e.into_inner());
+                    let item = manifest.next();
+                    let duplicate_of = match &item {
+                        Some(Ok(entry)) => self.claim(entry),
+                        _ => None,
+                    };
+                    (item, duplicate_of)
+                };
                 match item {
                     None => return Ok(()),
                     Some(Err(e)) => self.bad_line(&e)?,
-                    Some(Ok(entry)) => self.mesh(&entry, &mut image)?,
+                    Some(Ok(entry)) => self.mesh(&entry, duplicate_of, &mut image)?,
                 }
             }
         })
+    }
+
+    /// Records the entry's id (when in this share); the line that used it
+    /// first, when it is a repeat.
+    fn claim(&self, entry: &Entry) -> Option<u64> {
+        use std::collections::hash_map::Entry as Slot;
+        let id = entry_id(entry);
+        if !self.config.shard.has_id(&id) {
+            return None;
+        }
+        match self
+            .seen
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .entry(id)
+        {
+            Slot::Occupied(first) => Some(*first.get()),
+            Slot::Vacant(slot) => {
+                slot.insert(entry.line);
+                None
+            }
+        }
     }
 
     fn bad_line(&self, e: &LineError) -> std::io::Result<()> {
@@ -311,7 +346,12 @@ impl Run<'_> {
     }
 
     /// Every output of one entry.
-    fn mesh(&self, entry: &Entry, image: &mut Image) -> std::io::Result<()> {
+    fn mesh(
+        &self,
+        entry: &Entry,
+        duplicate_of: Option<u64>,
+        image: &mut Image,
+    ) -> std::io::Result<()> {
         let id = entry_id(entry);
         if !self.config.shard.has_id(&id) {
             return Ok(());
@@ -322,21 +362,39 @@ impl Run<'_> {
         let id_ref = id.as_str();
         let outputs: Vec<(&View, Shading, String)> = views
             .iter()
-            .flat_map(|v| modes.iter().map(move |&m| (v, m, output_name(id_ref, v, m))))
+            .flat_map(|v| {
+                modes
+                    .iter()
+                    .map(move |&m| (v, m, output_name(id_ref, v, m)))
+            })
             .collect();
         let mut tally = Tally::default();
-        let result = self.draw_all(entry, &id, &outputs, image, &mut tally);
+        let result = self.draw_all(entry, &id, duplicate_of, &outputs, image, &mut tally);
         let failure = match result {
             Ok(()) => tally.first_error.take(),
             Err(Failed::Io(e)) => return Err(e),
             Err(Failed::Mesh(message)) => {
                 // Every output not already complete fails with the mesh.
-                let message = escape(&format!("{}:{}: {message}", self.manifest_name(), entry.line));
+                let message = escape(&format!(
+                    "{}:{}: {message}",
+                    self.manifest_name(),
+                    entry.line
+                ));
                 for (view, mode, name) in &outputs {
                     if tally.done.contains(name) {
                         continue;
                     }
-                    self.row(entry, &id, view, *mode, name, None, None, Status::Error, Some(&message))?;
+                    self.row(
+                        entry,
+                        &id,
+                        view,
+                        *mode,
+                        name,
+                        None,
+                        None,
+                        Status::Error,
+                        Some(&message),
+                    )?;
                     tally.failed += 1;
                 }
                 Some(message)
@@ -362,31 +420,32 @@ impl Run<'_> {
         &self,
         entry: &Entry,
         id: &str,
+        duplicate_of: Option<u64>,
         outputs: &[(&View, Shading, String)],
         image: &mut Image,
         tally: &mut Tally,
     ) -> Result<(), Failed> {
         check_id(id).map_err(Failed::Mesh)?;
-        {
-            use std::collections::hash_map::Entry as Slot;
-            let mut seen = self.seen.lock().unwrap_or_else(|e| e.into_inner());
-            match seen.entry(id.to_owned()) {
-                Slot::Occupied(first) => {
-                    return Err(Failed::Mesh(format!(
-                        "id {id:?} was already used on line {}",
-                        first.get()
-                    )));
-                }
-                Slot::Vacant(slot) => {
-                    slot.insert(entry.line);
-                }
-            }
+        if let Some(first) = duplicate_of {
+            return Err(Failed::Mesh(format!(
+                "id \"{id}\" was already used on line {first}"
+            )));
         }
         let mut missing = Vec::new();
         for (view, mode, name) in outputs {
             let path = self.config.output.join(name);
             if !self.config.force && is_complete_png(&path) {
-                self.row(entry, id, view, *mode, name, None, None, Status::Skipped, None)?;
+                self.row(
+                    entry,
+                    id,
+                    view,
+                    *mode,
+                    name,
+                    None,
+                    None,
+                    Status::Skipped,
+                    None,
+                )?;
                 tally.skipped += 1;
                 tally.done.push(name.clone());
             } else {
@@ -405,21 +464,39 @@ impl Run<'_> {
         let mut renderer = Renderer::new();
         for (view, mode, name, out) in missing {
             let start = Instant::now();
-            let result = mesh
-                .render(&mut renderer, view, mode, image)
-                .and_then(|_| {
-                    write_png_with(&out, image, self.config.compression)
-                        .map_err(|e| format!("cannot write {}: {e}", out.display()))
-                });
+            let result = mesh.render(&mut renderer, view, mode, image).and_then(|_| {
+                write_png_with(&out, image, self.config.compression)
+                    .map_err(|e| format!("cannot write {}: {e}", out.display()))
+            });
             let ms = start.elapsed().as_secs_f64() * 1e3;
             match result {
                 Ok(()) => {
-                    self.row(entry, id, view, mode, name, Some(ms), Some(triangles), Status::Ok, None)?;
+                    self.row(
+                        entry,
+                        id,
+                        view,
+                        mode,
+                        name,
+                        Some(ms),
+                        Some(triangles),
+                        Status::Ok,
+                        None,
+                    )?;
                     tally.written += 1;
                 }
                 Err(e) => {
                     let message = escape(&format!("{}:{}: {e}", self.manifest_name(), entry.line));
-                    self.row(entry, id, view, mode, name, None, Some(triangles), Status::Error, Some(&message))?;
+                    self.row(
+                        entry,
+                        id,
+                        view,
+                        mode,
+                        name,
+                        None,
+                        Some(triangles),
+                        Status::Error,
+                        Some(&message),
+                    )?;
                     tally.failed += 1;
                     tally.first_error.get_or_insert(message);
                 }
