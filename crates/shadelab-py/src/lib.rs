@@ -324,8 +324,8 @@ fn batch<'py>(
     dict.set_item("failed", summary.failed)?;
     dict.set_item("bad_lines", summary.bad_lines)?;
     dict.set_item("seconds", summary.seconds)?;
-    dict.set_item("index", summary.index)?;
     dict.set_item("text", summary.to_string())?;
+    dict.set_item("index", summary.index)?;
     Ok(dict)
 }
 

@@ -33,7 +33,7 @@ def test_batch_writes_what_the_command_writes(cli, tmp_path):
             "--shading", "flat,phong", "--size", "64x48", "--progress", "none")
     summary = shadelab.batch(manifest, tmp_path / "py", views=3, shading=["flat", "phong"], size=(64, 48))
     assert (summary["meshes"], summary["written"], summary["failed"], summary["skipped"]) == (7, 36, 6, 0)
-    assert summary["index"].endswith("index.jsonl")
+    assert summary["index"].name == "index.jsonl"
     assert files(tmp_path / "py") == files(tmp_path / "cli")
     assert len(files(tmp_path / "py")) == 36
     rows = [json.loads(l) for l in (tmp_path / "py" / "index.jsonl").read_text().splitlines()]

@@ -20,7 +20,10 @@ def load_example():
 def test_ray_tasks_render_the_manifest_as_the_command_does(cli, tmp_path):
     manifest = make_set(tmp_path, count=8)
     example = load_example()
-    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
+    # Workers import the example's module by name, as they would on a cluster.
+    examples = str(REPO / "examples")
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False,
+             runtime_env={"env_vars": {"PYTHONPATH": examples}})
     try:
         args = ["--views", "2", "--shading", "all", "--size", "48x40", "--chunk", "3"]
         total = example.main([str(manifest), "-o", str(tmp_path / "ray"), *args])
