@@ -25,7 +25,10 @@ def load_average():
 
 def timed(cmd, env=None):
     start = time.perf_counter()
-    out = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    try:
+        out = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=1200)
+    except subprocess.TimeoutExpired:
+        return None, ["did not finish in 20 minutes"]
     seconds = time.perf_counter() - start
     if out.returncode != 0:
         return None, out.stderr.strip().splitlines()[-3:]
@@ -91,7 +94,7 @@ def main():
             if cmd[0] == py and cmd[1].endswith(("others.py", "render_loop.py")):
                 info = json.loads(result.stdout.strip().splitlines()[-1])
                 if "gl" in info:
-                    notes[(title, mesa)] = info["gl"]
+                    notes[(title, mesa)] = info["gl"].replace(" | ", ", ")
                 assert info["images"] == images, info
                 seconds = info["seconds"]  # its own clock: without Python's and the library's start-up
             times[(title, mesa)].append(seconds)
