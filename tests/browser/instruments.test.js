@@ -14,18 +14,13 @@ import os from 'node:os';
 import path from 'node:path';
 import {
   useViewer, context, baseUrl, ROOT, BIN, ARTIFACTS, METHODS,
-  openViewer, settle, update, digests, statistics, panelPixels, decodePng,
+  openViewer, settle, quiet, update, digests, statistics, panelPixels, decodePng,
 } from './harness.js';
 
 useViewer();
 
 const TMP = fs.mkdtempSync(path.join(os.tmpdir(), 'shadelab-instruments-'));
 
-/** Waits for the panels and then the open instrument. */
-async function quiet(page) {
-  await settle(page);
-  await page.evaluate(() => window.shadelab.instrumentsIdle());
-}
 
 /**
  * A screenshot of the page's top, the panels and the open instrument: 1600
@@ -417,9 +412,9 @@ for (const lang of ['en', 'ru', 'sk', 'cs']) TABLES[lang] = (await import(path.j
 const placeholders = (s) => [...s.matchAll(/\{(\w+)\}/g)].map((m) => m[1]).sort();
 /** Strings that are the same in a translation: symbols, units, names. */
 const SAME = {
-  all: ['app.heading', 'color.r', 'color.g', 'color.b', 'light.x', 'light.y', 'light.z'],
-  sk: ['panel.time', 'inspector.pixel', 'profile.readout', 'group.model', 'model.source'],
-  cs: ['panel.time', 'inspector.pixel', 'profile.readout', 'group.model', 'model.source'],
+  all: ['app.heading', 'color.r', 'color.g', 'color.b', 'model.summary'],
+  sk: ['panel.time', 'inspector.pixel', 'profile.readout', 'group.model', 'model.source', 'quiz.panel'],
+  cs: ['panel.time', 'inspector.pixel', 'profile.readout', 'group.model', 'model.source', 'quiz.panel', 'count.polygons.one'],
   ru: [],
 };
 

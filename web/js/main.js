@@ -602,6 +602,7 @@ function exposeForTests() {
     get present() { return present; },
     get quiz() { return quiz; },
     saveAnimation,
+    setModel,
     setTab,
     openFile,
     paint,

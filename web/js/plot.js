@@ -26,6 +26,9 @@ export function ticks(lo, hi, count = 5) {
  */
 export function drawPlot(canvas, spec) {
   const dpr = window.devicePixelRatio || 1;
+  // What the axes say, for a reader of the page's text (and its tests).
+  canvas.dataset.xLabel = spec.xLabel ?? '';
+  canvas.dataset.yLabel = spec.yLabel ?? '';
   const cssW = canvas.clientWidth || 300;
   const cssH = canvas.clientHeight || 150;
   canvas.width = Math.round(cssW * dpr);
