@@ -20,7 +20,9 @@ use shadelab_lab::{draw_overlays, Overlays, Texts};
 
 use crate::cli::CompareArgs;
 use crate::plot::{draw_on, err, font};
-use crate::{input_error, output_error, read_scene, report, resolve, check_output, timed_render, Failure};
+use crate::{
+    check_output, input_error, output_error, read_scene, report, resolve, timed_render, Failure,
+};
 
 /// Height of the label band above each panel.
 pub const LABEL_BAND: u32 = 28;
@@ -140,7 +142,10 @@ fn sheet(
     let mut reports = Vec::with_capacity(3);
     let mut titles = Vec::with_capacity(3);
     for (k, shading) in Shading::ALL.into_iter().enumerate() {
-        let options = RenderOptions { shading, ..*options };
+        let options = RenderOptions {
+            shading,
+            ..*options
+        };
         let (mut panel, stats, ms) = timed_render(scene, &options)?;
         if let Some(overlays) = overlays {
             draw_overlays(&mut panel, scene, &options, overlays).map_err(input_error)?;
@@ -170,7 +175,8 @@ fn sheet(
     }
     if !titles.is_empty() {
         sheet = draw_on(&sheet, |root| {
-            let style = font(18.0, RGBColor(240, 240, 240)).pos(Pos::new(HPos::Center, VPos::Center));
+            let style =
+                font(18.0, RGBColor(240, 240, 240)).pos(Pos::new(HPos::Center, VPos::Center));
             for (title, cx) in &titles {
                 root.draw(&Text::new(
                     title.as_str(),
@@ -208,15 +214,28 @@ struct ApngFile<'a> {
 impl<'a> ApngFile<'a> {
     /// Starts an APNG of `frames` frames of `width` × `height`, each shown
     /// `delay_ms`, looping forever.
-    fn create(path: &'a Path, width: u32, height: u32, frames: u32, delay_ms: u16) -> anyhow::Result<Self> {
+    fn create(
+        path: &'a Path,
+        width: u32,
+        height: u32,
+        frames: u32,
+        delay_ms: u16,
+    ) -> anyhow::Result<Self> {
         if let Ok(meta) = std::fs::symlink_metadata(path) {
-            anyhow::ensure!(meta.is_file(), "{} exists and is not a regular file", path.display());
+            anyhow::ensure!(
+                meta.is_file(),
+                "{} exists and is not a regular file",
+                path.display()
+            );
         }
         let dir = path
             .parent()
             .filter(|d| !d.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
-        let temp = tempfile::Builder::new().prefix(".shadelab-").suffix(".tmp").tempfile_in(dir)?;
+        let temp = tempfile::Builder::new()
+            .prefix(".shadelab-")
+            .suffix(".tmp")
+            .tempfile_in(dir)?;
         let mut encoder = png::Encoder::new(BufWriter::new(temp.reopen()?), width, height);
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
@@ -232,7 +251,10 @@ impl<'a> ApngFile<'a> {
 
     /// Writes the next frame.
     fn frame(&mut self, image: &Image) -> anyhow::Result<()> {
-        let writer = self.writer.as_mut().expect("frames are written before finish");
+        let writer = self
+            .writer
+            .as_mut()
+            .expect("frames are written before finish");
         writer.write_image_data(&image.to_rgb_bytes())?;
         Ok(())
     }

@@ -117,7 +117,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
             write_png(&args.output, &image)
                 .with_context(|| format!("cannot write {}", args.output.display()))
                 .map_err(output_error)?;
-            report(&Texts::new(args.lang.into()), options.shading, &options, &stats, ms);
+            report(
+                &Texts::new(args.lang.into()),
+                options.shading,
+                &options,
+                &stats,
+                ms,
+            );
             Ok(())
         }
         Command::Compare(args) => compare::run(&args),

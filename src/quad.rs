@@ -71,7 +71,10 @@ pub fn run(args: &QuadArgs) -> Result<(), Failure> {
                 .map_err(err)?;
             }
         }
-        for (row, label) in [(0, texts.get("cli.quad_whole")), (1, texts.get("cli.quad_triangles"))] {
+        for (row, label) in [
+            (0, texts.get("cli.quad_whole")),
+            (1, texts.get("cli.quad_triangles")),
+        ] {
             let y = TITLE_BAND + row * row_h + s / 2;
             root.draw(&Text::new(
                 label,
