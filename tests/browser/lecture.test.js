@@ -702,3 +702,19 @@ test('Save animation writes one orbit of the three panels, labelled, as an anima
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+// ---- the README's pictures ----
+
+test('screenshots at 1366×768 and 1920×1080 for the README', async () => {
+  const laptop = await openViewer('#tab=inspector&pixel=262,236', { width: 1366, height: 768 });
+  await quiet(laptop.page);
+  await laptop.page.screenshot({ path: path.join(ARTIFACTS, 'viewer-1366x768.png') });
+  const projector = await openViewer('#model=torus&detail=32&yaw=20&pitch=30&tab=cost&lights='
+    + encodeURIComponent('point:2,2,3:255,255,255:0.8;directional:1,0.2,-0.4:255,80,80:0.7;point:-2,3,-1:80,255,80:0.6;directional:-0.3,-1,-0.6:90,120,255:0.8'),
+  { width: 1920, height: 1080 });
+  await quiet(projector.page);
+  assert.equal(await projector.page.evaluate(() => window.shadelab.state.lights.length), 4);
+  await projector.page.screenshot({ path: path.join(ARTIFACTS, 'viewer-1920x1080.png') });
+  assert.deepEqual([...laptop.problems, ...projector.problems], []);
+  await Promise.all([laptop.page.close(), projector.page.close()]);
+});

@@ -240,7 +240,7 @@ export default {
   'tab.cost': 'Cena',
 
   'about.heading': 'Konstantní, Gouraudovo a Phongovo stínování',
-  'about.lead': 'Tři panely ukazují jeden model, jednu kameru a jedno světlo; liší se jen metoda stínování. Co dělá každá metoda a proč obraz vypadá právě tak:',
+  'about.lead': 'Tři panely ukazují jeden model, jednu kameru a tatáž světla; liší se jen metoda stínování. Co dělá každá metoda a proč obraz vypadá právě tak:',
   'about.model': 'Phongův osvětlovací model',
   'about.mach': 'Machovy proužky',
   'about.interpolation': 'Interpolace podél hran a úseků',

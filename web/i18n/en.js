@@ -243,7 +243,7 @@ export default {
   'tab.cost': 'Cost',
 
   'about.heading': 'Flat, Gouraud and Phong shading',
-  'about.lead': 'The three panels show one model, one camera and one light; only the shading method differs. What each method does, and why it looks as it does:',
+  'about.lead': 'The three panels show one model, one camera and the same lights; only the shading method differs. What each method does, and why it looks as it does:',
   'about.model': 'The Phong reflection model',
   'about.mach': 'Mach bands',
   'about.interpolation': 'Interpolation along edges and spans',

@@ -240,7 +240,7 @@ export default {
   'tab.cost': 'Cena',
 
   'about.heading': 'Konštantné, Gouraudovo a Phongovo tieňovanie',
-  'about.lead': 'Tri panely ukazujú jeden model, jednu kameru a jedno svetlo; líši sa len metóda tieňovania. Čo robí každá metóda a prečo obraz vyzerá práve tak:',
+  'about.lead': 'Tri panely ukazujú jeden model, jednu kameru a tie isté svetlá; líši sa len metóda tieňovania. Čo robí každá metóda a prečo obraz vyzerá práve tak:',
   'about.model': 'Phongov osvetľovací model',
   'about.mach': 'Machove pásy',
   'about.interpolation': 'Interpolácia pozdĺž hrán a úsekov',
