@@ -659,7 +659,8 @@ fn export(
 }
 
 fn write_file(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    std::fs::write(path, bytes).with_context(|| format!("cannot write {}", path.display()))
+    shadelab_io::write_atomic(path, |out| out.write_all(bytes))
+        .with_context(|| format!("cannot write {}", path.display()))
 }
 
 /// Writes the vertex, index and flat arrays; returns (vertices, triangles).

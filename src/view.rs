@@ -107,7 +107,8 @@ fn export(site: &Site, dir: &Path) -> anyhow::Result<()> {
             std::fs::create_dir_all(parent)
                 .with_context(|| format!("cannot create {}", parent.display()))?;
         }
-        std::fs::write(&path, bytes).with_context(|| format!("cannot write {}", path.display()))?;
+        shadelab_io::write_atomic(&path, |out| out.write_all(bytes))
+            .with_context(|| format!("cannot write {}", path.display()))?;
     }
     println!(
         "wrote the viewer ({} files) to {}; serve that directory with any web server \

@@ -1,10 +1,12 @@
-//! shadelab's file formats: OBJ, STL, PLY and glTF meshes in, TOML scenes, PNG images out.
+//! shadelab's file formats: OBJ, STL, PLY and glTF meshes in, TOML scenes, PNG images out,
+//! and the one way every command writes a file ([`write_atomic`]).
 #![warn(missing_docs)]
 
 mod gltf;
 mod mesh_file;
 mod mtl;
 mod obj;
+mod output;
 mod ply;
 mod png;
 mod scene;
@@ -16,6 +18,7 @@ pub use mesh_file::{
     MESH_EXTENSIONS,
 };
 pub use obj::{load_obj, load_obj_file, parse_obj, parse_obj_file};
+pub use output::{write_atomic, STDOUT_PATH};
 pub use ply::{load_ply, parse_ply};
 pub use png::{encode_png, read_png, write_png};
 pub use scene::{

@@ -1,61 +1,42 @@
 //! PNG images: 8-bit RGB out, and back in for tests and comparisons.
 
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::Path;
 
 use shadelab_core::{Image, Rgb8};
 
-/// Writes `image` as an 8-bit RGB PNG.
-///
-/// The image goes to a temporary file beside `path` that is renamed over it
-/// only when complete, so a failed or interrupted write never leaves a
-/// truncated image.
+/// Writes `image` as an 8-bit RGB PNG file through [`crate::write_atomic`]:
+/// whole or not at all, never through a link or over anything but a regular
+/// file; `-` is standard output.
 ///
 /// # Errors
-/// The I/O or encoding error.
+/// As [`crate::write_atomic`], and the encoding error.
 pub fn write_png(path: &Path, image: &Image) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let file_name = path.file_name().ok_or_else(|| {
-        std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "the output path names no file",
-        )
-    })?;
-    let temp = dir.join(format!(
-        ".{}.{}.tmp",
-        file_name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = (|| {
-        let file = std::fs::File::create(&temp)?;
-        let mut writer = BufWriter::new(file);
-        encode_png(&mut writer, image)?;
-        let file = writer.into_inner().map_err(|e| e.into_error())?;
-        file.sync_all()?;
-        std::fs::rename(&temp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temp);
-    }
-    result
+    crate::write_atomic(path, |mut out| encode_png(&mut out, image))
 }
 
 /// Encodes `image` as PNG into `out`.
 ///
 /// # Errors
-/// The I/O or encoding error.
+/// The I/O error as it came (a full disk stays `StorageFull`, a closed pipe
+/// `BrokenPipe`), or the encoding error.
 pub fn encode_png(out: &mut impl Write, image: &Image) -> std::io::Result<()> {
     let mut encoder = png::Encoder::new(out, image.width(), image.height());
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
+    let mut writer = encoder.write_header().map_err(io_error)?;
     writer
         .write_image_data(&image.to_rgb_bytes())
-        .map_err(std::io::Error::other)?;
-    writer.finish().map_err(std::io::Error::other)
+        .map_err(io_error)?;
+    writer.finish().map_err(io_error)
+}
+
+/// The I/O error inside an encoding error, or the encoding error as one.
+fn io_error(e: png::EncodingError) -> std::io::Error {
+    match e {
+        png::EncodingError::IoError(e) => e,
+        other => std::io::Error::other(other),
+    }
 }
 
 /// Reads an 8-bit RGB or RGBA PNG (alpha is dropped).
