@@ -6,10 +6,9 @@
 //! stand [`GAP`] pixels apart, as the viewer's "Save PNG" lays them out.
 //! English labels are drawn with the 8×8 bitmap font (so that the sheet's
 //! pixels stay those of earlier versions); labels in another language, which
-//! need letters outside ASCII, with the embedded DejaVu Sans.
+//! need letters outside ASCII, with the embedded DejaVu Sans. Files are
+//! written through [`shadelab_io::write_atomic`], as every output is.
 
-use std::fs::File;
-use std::io::BufWriter;
 use std::path::Path;
 
 use anyhow::Context;
@@ -48,20 +47,42 @@ pub fn run(args: &CompareArgs) -> Result<(), Failure> {
         let (_, options, inputs) = resolve(&file, scene_path)?;
         check_output(&args.output, &inputs)?;
         let (w, h) = sheet_size(&options);
-        let mut orbit = ApngFile::create(&args.output, w, h, frames, args.delay)
-            .with_context(|| format!("cannot write {}", args.output.display()))
-            .map_err(output_error)?;
-        for k in 0..frames {
-            file.render.yaw = Some(yaw + 360.0 * k as f32 / frames as f32);
-            let (scene, options, _) = resolve(&file, scene_path)?;
-            let (sheet, _) = sheet(&scene, &options, args.overlay.overlay, &texts)?;
-            orbit
-                .frame(&sheet)
-                .with_context(|| format!("cannot write {}", args.output.display()))
-                .map_err(output_error)?;
+        // Frames are drawn while the file is written (only one is held at a
+        // time); a frame that cannot be drawn stops the write, and nothing
+        // is left behind.
+        let mut failed = None;
+        let written = shadelab_io::write_atomic(&args.output, |out| {
+            let mut encoder = png::Encoder::new(out, w, h);
+            encoder.set_color(png::ColorType::Rgb);
+            encoder.set_depth(png::BitDepth::Eight);
+            encoder
+                .set_animated(frames, 0)
+                .map_err(std::io::Error::other)?;
+            encoder
+                .set_frame_delay(args.delay, 1000)
+                .map_err(std::io::Error::other)?;
+            let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
+            for k in 0..frames {
+                file.render.yaw = Some(yaw + 360.0 * k as f32 / frames as f32);
+                let frame = resolve(&file, scene_path).and_then(|(scene, options, _)| {
+                    sheet(&scene, &options, args.overlay.overlay, &texts)
+                });
+                match frame {
+                    Ok((image, _)) => writer
+                        .write_image_data(&image.to_rgb_bytes())
+                        .map_err(std::io::Error::other)?,
+                    Err(f) => {
+                        failed = Some(f);
+                        return Err(std::io::Error::other("a frame could not be drawn"));
+                    }
+                }
+            }
+            writer.finish().map_err(std::io::Error::other)
+        });
+        if let Some(f) = failed {
+            return Err(f);
         }
-        orbit
-            .finish()
+        written
             .with_context(|| format!("cannot write {}", args.output.display()))
             .map_err(output_error)?;
         let line = texts.fill(
@@ -198,74 +219,5 @@ pub fn title_id(shading: Shading) -> &'static str {
         Shading::Flat => "cli.flat",
         Shading::Gouraud => "cli.gouraud",
         Shading::Phong => "cli.phong",
-    }
-}
-
-/// An animated PNG being written: frames go straight to a temporary file
-/// beside the output, which replaces the output only once every frame is in
-/// (so a failed orbit never leaves a truncated file), and never replaces
-/// anything but a regular file.
-struct ApngFile<'a> {
-    path: &'a Path,
-    temp: tempfile::NamedTempFile,
-    writer: Option<png::Writer<BufWriter<File>>>,
-}
-
-impl<'a> ApngFile<'a> {
-    /// Starts an APNG of `frames` frames of `width` × `height`, each shown
-    /// `delay_ms`, looping forever.
-    fn create(
-        path: &'a Path,
-        width: u32,
-        height: u32,
-        frames: u32,
-        delay_ms: u16,
-    ) -> anyhow::Result<Self> {
-        if let Ok(meta) = std::fs::symlink_metadata(path) {
-            anyhow::ensure!(
-                meta.is_file(),
-                "{} exists and is not a regular file",
-                path.display()
-            );
-        }
-        let dir = path
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        let temp = tempfile::Builder::new()
-            .prefix(".shadelab-")
-            .suffix(".tmp")
-            .tempfile_in(dir)?;
-        let mut encoder = png::Encoder::new(BufWriter::new(temp.reopen()?), width, height);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder.set_animated(frames, 0)?;
-        encoder.set_frame_delay(delay_ms, 1000)?;
-        let writer = encoder.write_header()?;
-        Ok(ApngFile {
-            path,
-            temp,
-            writer: Some(writer),
-        })
-    }
-
-    /// Writes the next frame.
-    fn frame(&mut self, image: &Image) -> anyhow::Result<()> {
-        let writer = self
-            .writer
-            .as_mut()
-            .expect("frames are written before finish");
-        writer.write_image_data(&image.to_rgb_bytes())?;
-        Ok(())
-    }
-
-    /// Ends the file and puts it in place.
-    fn finish(mut self) -> anyhow::Result<()> {
-        let writer = self.writer.take().expect("finish is called once");
-        // Writes the end of the file and flushes the buffer into the file.
-        writer.finish()?;
-        self.temp.as_file().sync_all()?;
-        self.temp.persist(self.path)?;
-        Ok(())
     }
 }

@@ -163,11 +163,11 @@ async function presentAt(viewport, dpr) {
     await page.keyboard.press('ArrowRight');
     await settle(page);
     assert.equal(await page.evaluate(() => window.shadelab.state.camera.yaw), yaw - 5, 'the arrow key orbits');
+    if (dpr === 1) await page.screenshot({ path: path.join(ARTIFACTS, `present-${viewport.width}x${viewport.height}.png`) });
     await page.locator('#present-bar').getByLabel('Model', { exact: true }).selectOption('torus');
     await settle(page);
     const drawn = await statistics(page);
     assert.ok(drawn.phong.covered > 0.05 * shown[0].width ** 2, 'the torus is drawn at the large size');
-    if (dpr === 1) await page.screenshot({ path: path.join(ARTIFACTS, `present-${viewport.width}x${viewport.height}.png`) });
     await page.keyboard.press('Escape');
     await until(page, () => !document.body.classList.contains('presenting') && window.shadelab.panels.every((p) => p.canvas.width === 480 && !p.busy));
     assert.ok(await page.locator('#controls-column').isVisible());
@@ -706,13 +706,19 @@ test('Save animation writes one orbit of the three panels, labelled, as an anima
 // ---- the README's pictures ----
 
 test('screenshots at 1366×768 and 1920×1080 for the README', async () => {
+  // Steady-state times in the captions, not the first frame's: a few frames first.
+  const warm = async (page, yaw) => {
+    for (let i = 0; i < 12; i++) await update(page, `s.camera.yaw = ${yaw + (i % 2 ? 0.01 : 0)}`);
+    await update(page, `s.camera.yaw = ${yaw}`);
+    await quiet(page);
+  };
   const laptop = await openViewer('#tab=inspector&pixel=262,236', { width: 1366, height: 768 });
-  await quiet(laptop.page);
+  await warm(laptop.page, 0);
   await laptop.page.screenshot({ path: path.join(ARTIFACTS, 'viewer-1366x768.png') });
   const projector = await openViewer('#model=torus&detail=32&yaw=20&pitch=30&tab=cost&lights='
     + encodeURIComponent('point:2,2,3:255,255,255:0.8;directional:1,0.2,-0.4:255,80,80:0.7;point:-2,3,-1:80,255,80:0.6;directional:-0.3,-1,-0.6:90,120,255:0.8'),
   { width: 1920, height: 1080 });
-  await quiet(projector.page);
+  await warm(projector.page, 20);
   assert.equal(await projector.page.evaluate(() => window.shadelab.state.lights.length), 4);
   await projector.page.screenshot({ path: path.join(ARTIFACTS, 'viewer-1920x1080.png') });
   assert.deepEqual([...laptop.problems, ...projector.problems], []);
