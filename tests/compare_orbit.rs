@@ -360,3 +360,25 @@ fn every_command_that_prints_prose_takes_lang() {
         stderr(&out)
     );
 }
+
+#[test]
+fn view_takes_lang_for_its_messages_and_the_page() {
+    use std::io::{BufRead, BufReader};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shadelab"))
+        .args(["view", "--port", "0", "--no-open", "--lang", "sk"])
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .expect("the server starts");
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    let first = lines.next().unwrap().unwrap();
+    let second = lines.next().unwrap().unwrap();
+    child.kill().unwrap();
+    child.wait().unwrap();
+    // The address line keeps its form; the page opens in Slovak.
+    assert!(
+        first.starts_with("shadelab viewer: http://127.0.0.1:"),
+        "{first}"
+    );
+    assert!(first.ends_with("/#lang=sk"), "{first}");
+    assert_eq!(second, "Zastavíte ho klávesmi Ctrl+C.");
+}

@@ -255,7 +255,10 @@ fn a_frame_reports_the_camera_that_drew_it_and_its_lights() {
     let m = info.view;
     for (i, j) in [(0, 0), (0, 1), (1, 1), (1, 2), (2, 2), (0, 2)] {
         let dot: f32 = (0..3).map(|k| m[4 * k + i] * m[4 * k + j]).sum();
-        assert!((dot - f32::from(u8::from(i == j))).abs() < 1e-5, "{i} {j}: {dot}");
+        assert!(
+            (dot - f32::from(u8::from(i == j))).abs() < 1e-5,
+            "{i} {j}: {dot}"
+        );
     }
     // Several lights of both kinds, and none: each is the command line's picture.
     let lights = "[[lights]]\nkind = \"point\"\nposition = [2.0, 2.0, 3.0]\n\
