@@ -249,8 +249,8 @@ fn a_frame_reports_the_camera_that_drew_it_and_its_lights() {
     );
     let info = engine.render(&toml).unwrap();
     let file = SceneFile::parse(&toml, "scene").unwrap();
-    let (scene, _) = file.resolve(Path::new("")).unwrap();
-    assert_eq!(info.view, scene.camera.view().to_cols_array());
+    let (resolved, _) = file.resolve(Path::new("")).unwrap();
+    assert_eq!(info.view, resolved.camera.view().to_cols_array());
     // The view's rotation is orthonormal: the page turns light directions with it.
     let m = info.view;
     for (i, j) in [(0, 0), (0, 1), (1, 1), (1, 2), (2, 2), (0, 2)] {
