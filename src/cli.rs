@@ -25,7 +25,7 @@ pub enum Command {
     /// Render flat, Gouraud and Phong side by side, labelled, in one image.
     Compare(CompareArgs),
     /// List the built-in models.
-    Models,
+    Models(ModelsArgs),
     /// Explain one pixel: for each method, the polygon, the scanline, P, Q,
     /// the interpolation parameters and values, and the colour.
     Explain(ExplainArgs),
@@ -63,6 +63,13 @@ pub enum LangArg {
     Cs,
 }
 
+impl LangArg {
+    /// The language's code, as links and `Lang::code` spell it.
+    pub fn code(self) -> &'static str {
+        shadelab_lab::Lang::from(self).code()
+    }
+}
+
 impl From<LangArg> for shadelab_lab::Lang {
     fn from(l: LangArg) -> shadelab_lab::Lang {
         match l {
@@ -72,6 +79,14 @@ impl From<LangArg> for shadelab_lab::Lang {
             LangArg::Cs => shadelab_lab::Lang::Cs,
         }
     }
+}
+
+/// `shadelab models`
+#[derive(Debug, Args)]
+pub struct ModelsArgs {
+    /// Language of the table.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
 }
 
 /// `shadelab explain`
@@ -174,6 +189,9 @@ pub struct QuadArgs {
     /// Size of each panel in pixels (odd puts a pixel centre on the quad's centre).
     #[arg(long, default_value_t = 121)]
     pub size: u32,
+    /// Language of the labels and the table.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
 }
 
 /// `shadelab cost`
@@ -184,6 +202,9 @@ pub struct CostArgs {
     /// Renders per method; the median time is reported.
     #[arg(long, default_value_t = 5)]
     pub runs: u32,
+    /// Language of the table.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
     /// Scene overrides.
     #[command(flatten)]
     pub overrides: SceneOverrides,
@@ -229,6 +250,9 @@ pub struct ViewArgs {
     /// Write the viewer as static files into this new or empty directory instead of serving it.
     #[arg(long, value_name = "DIR")]
     pub export: Option<PathBuf>,
+    /// Language of these messages and of the page it opens (default: the browser's).
+    #[arg(long, value_enum)]
+    pub lang: Option<LangArg>,
 }
 
 /// `shadelab render`
@@ -242,6 +266,9 @@ pub struct RenderArgs {
     /// Output PNG file.
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Language of the line printed.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
     /// Scene overrides.
     #[command(flatten)]
     pub overrides: SceneOverrides,
@@ -255,9 +282,18 @@ pub struct RenderArgs {
 pub struct CompareArgs {
     /// Scene file (TOML); flags override its values.
     pub scene: Option<PathBuf>,
-    /// Output PNG file.
+    /// Output file: a PNG, or with `--orbit` an animated PNG (.apng or .png).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// One full orbit of the camera in this many frames, as an animated PNG.
+    #[arg(long, value_name = "FRAMES")]
+    pub orbit: Option<u32>,
+    /// With `--orbit`: how long each frame is shown, in milliseconds.
+    #[arg(long, value_name = "MS", default_value_t = 80, requires = "orbit")]
+    pub delay: u16,
+    /// Language of the labels and the lines printed.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
     /// Scene overrides (`--size` is the size of each panel).
     #[command(flatten)]
     pub overrides: SceneOverrides,
