@@ -21,7 +21,7 @@ pub struct BatchArgs {
     /// The manifest: JSON Lines ({"path": …, "id": …} per line), or CSV with a
     /// `path[,id]` header (by the `.csv` extension). Paths are relative to it.
     pub manifest: PathBuf,
-    /// Output folder: DIR/<id>/<view>_<mode>.png and index.jsonl.
+    /// Output folder: DIR/ID/VIEW_MODE.png for each output, and index.jsonl.
     #[arg(short, long, value_name = "DIR")]
     pub output: PathBuf,
     /// Scene file (TOML) with the shared settings; flags override its values.

@@ -35,7 +35,9 @@ pub fn write_png_with(
     image: &Image,
     compression: PngCompression,
 ) -> std::io::Result<()> {
-    crate::write_atomic(path, |mut out| encode_png_with(&mut out, image, compression))
+    crate::write_atomic(path, |mut out| {
+        encode_png_with(&mut out, image, compression)
+    })
 }
 
 /// Encodes `image` as PNG into `out`.
