@@ -28,7 +28,7 @@ pub enum Command {
     /// Render flat, Gouraud and Phong side by side, labelled, in one image.
     Compare(CompareArgs),
     /// List the built-in models.
-    Models,
+    Models(ModelsArgs),
     /// Explain one pixel: for each method, the polygon, the scanline, P, Q,
     /// the interpolation parameters and values, and the colour.
     Explain(ExplainArgs),
@@ -48,6 +48,8 @@ pub enum Command {
     View(ViewArgs),
     /// Time the standard scenes: ms/frame, Mpixel/s, Mtriangles/s per model, size, method, rasterizer, threads.
     Bench(crate::bench::BenchArgs),
+    /// Render many meshes (a JSON Lines or CSV manifest): views, modes, PNGs and an index; resumable, shardable.
+    Batch(crate::batch::BatchArgs),
 }
 
 /// `--lang`
@@ -64,6 +66,13 @@ pub enum LangArg {
     Cs,
 }
 
+impl LangArg {
+    /// The language's code, as links and `Lang::code` spell it.
+    pub fn code(self) -> &'static str {
+        shadelab_lab::Lang::from(self).code()
+    }
+}
+
 impl From<LangArg> for shadelab_lab::Lang {
     fn from(l: LangArg) -> shadelab_lab::Lang {
         match l {
@@ -73,6 +82,14 @@ impl From<LangArg> for shadelab_lab::Lang {
             LangArg::Cs => shadelab_lab::Lang::Cs,
         }
     }
+}
+
+/// `shadelab models`
+#[derive(Debug, Args)]
+pub struct ModelsArgs {
+    /// Language of the table.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
 }
 
 /// `shadelab explain`
@@ -175,6 +192,9 @@ pub struct QuadArgs {
     /// Size of each panel in pixels (odd puts a pixel centre on the quad's centre).
     #[arg(long, default_value_t = 121, value_parser = whole::<u32, { MIN_QUAD_SIZE as u64 }, { MAX_QUAD_SIZE as u64 }>, allow_hyphen_values = true)]
     pub size: u32,
+    /// Language of the labels and the table.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
 }
 
 /// `shadelab cost`
@@ -185,6 +205,9 @@ pub struct CostArgs {
     /// Renders per method; the median time is reported.
     #[arg(long, default_value_t = 5, value_parser = whole::<u32, 1, { MAX_COST_RUNS as u64 }>, allow_hyphen_values = true)]
     pub runs: u32,
+    /// Language of the table.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
     /// Scene overrides.
     #[command(flatten)]
     pub overrides: SceneOverrides,
@@ -265,6 +288,9 @@ pub struct ViewArgs {
     /// Write the viewer as static files into this new or empty directory instead of serving it.
     #[arg(long, value_name = "DIR")]
     pub export: Option<PathBuf>,
+    /// Language of these messages and of the page it opens (default: the browser's).
+    #[arg(long, value_enum)]
+    pub lang: Option<LangArg>,
 }
 
 /// `shadelab render`
@@ -278,6 +304,9 @@ pub struct RenderArgs {
     /// Output PNG file (`-`: standard output).
     #[arg(short, long, value_parser = output_path)]
     pub output: PathBuf,
+    /// Language of the line printed.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
     /// Scene overrides.
     #[command(flatten)]
     pub overrides: SceneOverrides,
@@ -291,9 +320,18 @@ pub struct RenderArgs {
 pub struct CompareArgs {
     /// Scene file (TOML); flags override its values.
     pub scene: Option<PathBuf>,
-    /// Output PNG file (`-`: standard output).
+    /// Output file: a PNG, or with `--orbit` an animated PNG (.apng or .png).
     #[arg(short, long, value_parser = output_path)]
     pub output: PathBuf,
+    /// One full orbit of the camera in this many frames, as an animated PNG.
+    #[arg(long, value_name = "FRAMES")]
+    pub orbit: Option<u32>,
+    /// With `--orbit`: how long each frame is shown, in milliseconds.
+    #[arg(long, value_name = "MS", default_value_t = 80, requires = "orbit")]
+    pub delay: u16,
+    /// Language of the labels and the lines printed.
+    #[arg(long, value_enum, default_value = "en")]
+    pub lang: LangArg,
     /// Scene overrides (`--size` is the size of each panel).
     #[command(flatten)]
     pub overrides: SceneOverrides,

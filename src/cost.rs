@@ -30,26 +30,39 @@ pub fn run(args: &CostArgs) -> Result<(), Failure> {
     )
     .map_err(input_error)?;
     let o = &loaded.options;
+    let texts = shadelab_lab::Texts::new(args.lang.into());
+    let t = |id: &str| texts.get(id).to_owned();
     let mut out = std::io::stdout().lock();
     let mut print = || -> std::io::Result<()> {
+        let rasterizer = t(&format!("cli.rasterizer_{}", o.rasterizer.name()));
         writeln!(
             out,
-            "{}x{}, {} rasterizer, median of {} runs",
-            o.width,
-            o.height,
-            o.rasterizer.name(),
-            args.runs.max(1)
+            "{}",
+            texts.fill(
+                "cli.cost_title",
+                &[
+                    ("size", &format!("{}x{}", o.width, o.height)),
+                    ("rasterizer", &rasterizer),
+                    ("runs", &args.runs.max(1).to_string()),
+                ],
+            )
         )?;
         writeln!(
             out,
             "{:<8} {:>10} {:>9} {:>11} {:>12} {:>12} {:>12}",
-            "method", "time (ms)", "polygons", "pixels", "per polygon", "per vertex", "per pixel"
+            t("cli.cost_method"),
+            t("cli.cost_time"),
+            t("cli.cost_polygons"),
+            t("cli.cost_pixels"),
+            t("cli.cost_per_polygon"),
+            t("cli.cost_per_vertex"),
+            t("cli.cost_per_pixel")
         )?;
         for c in &costs {
             writeln!(
                 out,
                 "{:<8} {:>10.2} {:>9} {:>11} {:>12} {:>12} {:>12}",
-                c.shading.title(),
+                t(crate::compare::title_id(c.shading)),
                 c.millis,
                 c.stats.rasterized,
                 c.stats.fragments_shaded,

@@ -5,8 +5,10 @@
 //! model file, out-of-range values); 1 when the output cannot be written.
 
 mod accuracy;
+mod batch;
 mod bench;
 mod cli;
+mod compare;
 mod cost;
 mod errors;
 mod explain;
@@ -26,15 +28,15 @@ use std::time::Instant;
 
 use anyhow::Context;
 use clap::Parser;
-use shadelab_core::limits::{COMPARE_BYTES_PER_PIXEL, MAX_THREADS, RENDER_BYTES_PER_PIXEL};
+use shadelab_core::limits::{MAX_THREADS, RENDER_BYTES_PER_PIXEL};
 use shadelab_core::{
-    escape_message, escape_token, render, Image, RenderOptions, RenderStats, Rgb8, Scene, Shading,
+    escape_message, escape_token, render, Image, RenderOptions, RenderStats, Scene, Shading,
     BUILTIN_MODELS,
 };
 use shadelab_io::{model_path, write_png, SceneFile};
-use shadelab_lab::{draw_overlays, Overlays};
+use shadelab_lab::{draw_overlays, Texts};
 
-use cli::{Cli, Command, SceneOverrides};
+use cli::{Cli, Command};
 
 /// A failure and the exit code it maps to.
 struct Failure {
@@ -173,15 +175,16 @@ fn run(cli: Cli) -> Result<(), Failure> {
             write_png(&args.output, &image)
                 .with_context(|| format!("cannot write {}", args.output.display()))
                 .map_err(output_error)?;
-            report(options.shading, &options, &stats, ms);
+            report(
+                &Texts::new(args.lang.into()),
+                options.shading,
+                &options,
+                &stats,
+                ms,
+            );
             Ok(())
         }
-        Command::Compare(args) => compare(
-            args.scene.as_deref(),
-            &args.overrides,
-            &args.output,
-            args.overlay.overlay,
-        ),
+        Command::Compare(args) => compare::run(&args),
         Command::Explain(args) => explain::run(&args),
         Command::Profile(args) => profile::run(&args),
         Command::Errors(args) => errors::run(&args),
@@ -189,22 +192,29 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Quad(args) => quad::run(&args),
         Command::Cost(args) => cost::run(&args),
         Command::Bench(args) => bench::run(&args),
-        Command::Models => {
+        Command::Batch(args) => batch::run(&args),
+        Command::Models(args) => {
+            let texts = Texts::new(args.lang.into());
             let mut out = std::io::stdout().lock();
             let mut list = || -> std::io::Result<()> {
                 writeln!(
                     out,
-                    "{:<10} {:>7}  {:<48} detail",
-                    "name", "default", "description"
+                    "{:<10} {:>7}  {:<48} {}",
+                    texts.get("cli.models_name"),
+                    texts.get("cli.models_default"),
+                    texts.get("cli.models_description"),
+                    texts.get("cli.models_detail")
                 )?;
                 for m in BUILTIN_MODELS {
+                    let description = format!("model.{}", m.name);
+                    let meaning = format!("model.{}_detail", m.name);
                     writeln!(
                         out,
                         "{:<10} {:>7}  {:<48} {} ({}..={})",
                         m.name,
                         m.default_detail,
-                        m.description,
-                        m.detail_meaning,
+                        texts.get(&description),
+                        texts.get(&meaning),
                         m.detail_range.0,
                         m.detail_range.1
                     )?;
@@ -218,6 +228,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             port: args.port,
             open: !args.no_open,
             export: args.export.as_deref(),
+            lang: args.lang,
         })
         .map_err(output_error),
     }
@@ -286,77 +297,22 @@ fn timed_render(
     Ok((image, stats, start.elapsed().as_secs_f64() * 1e3))
 }
 
-fn report(shading: Shading, options: &RenderOptions, stats: &RenderStats, ms: f64) {
+/// Prints what a render cost, in the language of `texts`.
+fn report(texts: &Texts, shading: Shading, options: &RenderOptions, stats: &RenderStats, ms: f64) {
+    let method = format!("{:<8}", texts.get(compare::title_id(shading)));
     warn(&format!(
-        "{:<8} {}x{}  {:>8.2} ms  {} polygons rasterized ({} culled)  {} pixels shaded  {} lighting evaluations\n",
-        shading.title(),
-        options.width,
-        options.height,
-        ms,
-        stats.rasterized,
-        stats.culled,
-        stats.fragments_shaded,
-        stats.lighting_evaluations
+        "{}\n",
+        texts.fill(
+            "cli.report",
+            &[
+                ("method", &method),
+                ("size", &format!("{}x{}", options.width, options.height)),
+                ("ms", &format!("{ms:>8.2}")),
+                ("rasterized", &stats.rasterized.to_string()),
+                ("culled", &stats.culled.to_string()),
+                ("pixels", &stats.fragments_shaded.to_string()),
+                ("evaluations", &stats.lighting_evaluations.to_string()),
+            ],
+        )
     ));
-}
-
-/// Height of the label band above each panel.
-const LABEL_BAND: u32 = 28;
-/// Width of the gap between panels.
-const GAP: u32 = 4;
-
-fn compare(
-    scene_path: Option<&Path>,
-    overrides: &SceneOverrides,
-    output: &Path,
-    overlays: Option<Overlays>,
-) -> Result<(), Failure> {
-    let mut file = read_scene(scene_path)?;
-    // Panels default to a square that three fit side by side on a laptop screen.
-    if file.render.width.is_none() && file.render.height.is_none() {
-        file.render.width = Some(480);
-        file.render.height = Some(480);
-    }
-    overrides.apply(&mut file, scene_path.is_some());
-    let (scene, options, inputs) = resolve(&file, scene_path)?;
-    check_output(output, &inputs)?;
-    memory::check(
-        "compare",
-        Some(&scene.mesh),
-        pixels(&options),
-        COMPARE_BYTES_PER_PIXEL,
-    )?;
-
-    let (w, h) = (options.width, options.height);
-    let total_width = 3 * w + 2 * GAP;
-    let band = Rgb8::new(32, 32, 40);
-    let mut sheet = Image::filled(total_width, h + LABEL_BAND, band);
-    for (k, shading) in Shading::ALL.into_iter().enumerate() {
-        let options = RenderOptions { shading, ..options };
-        let (mut panel, stats, ms) = timed_render(&scene, &options)?;
-        if let Some(overlays) = overlays {
-            draw_overlays(&mut panel, &scene, &options, overlays).map_err(input_error)?;
-        }
-        let x = k as u32 * (w + GAP);
-        sheet.blit(&panel, x, LABEL_BAND);
-        let title = shading.title();
-        let scale = if label::text_width(title, 2) + 8 <= w {
-            2
-        } else {
-            1
-        };
-        let tx = x + w.saturating_sub(label::text_width(title, scale)) / 2;
-        label::draw_text(
-            &mut sheet,
-            title,
-            tx,
-            (LABEL_BAND - 8 * scale) / 2,
-            scale,
-            Rgb8::new(240, 240, 240),
-        );
-        report(shading, &options, &stats, ms);
-    }
-    write_png(output, &sheet)
-        .with_context(|| format!("cannot write {}", output.display()))
-        .map_err(output_error)
 }

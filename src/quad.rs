@@ -54,6 +54,7 @@ pub fn run(args: &QuadArgs) -> Result<(), Failure> {
         QUAD_BYTES_PER_PIXEL,
     )?;
     let samples = quad_study(&args.angles, args.size).map_err(|e: RenderError| input_error(e))?;
+    let texts = shadelab_lab::Texts::new(args.lang.into());
     let s = args.size;
     let cols = samples.len() as u32;
     let row_h = s + CAPTION_BAND;
@@ -91,7 +92,10 @@ pub fn run(args: &QuadArgs) -> Result<(), Failure> {
                 .map_err(err)?;
             }
         }
-        for (row, label) in [(0, "whole"), (1, "triangles")] {
+        for (row, label) in [
+            (0, texts.get("cli.quad_whole")),
+            (1, texts.get("cli.quad_triangles")),
+        ] {
             let y = TITLE_BAND + row * row_h + s / 2;
             root.draw(&Text::new(
                 label,
@@ -111,7 +115,9 @@ pub fn run(args: &QuadArgs) -> Result<(), Failure> {
         writeln!(
             out,
             "{:>8} {:>14} {:>14}",
-            "angle", "centre, whole", "centre, fans"
+            texts.get("cli.quad_angle"),
+            texts.get("cli.quad_centre_whole"),
+            texts.get("cli.quad_centre_fans")
         )?;
         for q in &samples {
             writeln!(

@@ -19,6 +19,8 @@ pub struct ViewRequest<'a> {
     pub open: bool,
     /// Write the static site here instead of serving it.
     pub export: Option<&'a Path>,
+    /// The language of the messages and of the page opened (None: the browser's).
+    pub lang: Option<crate::cli::LangArg>,
 }
 
 /// Serves the viewer until the process is stopped, or exports it.
@@ -40,17 +42,20 @@ pub fn view(request: &ViewRequest<'_>) -> anyhow::Result<()> {
         };
         anyhow::anyhow!("cannot listen on {addr}: {e}{hint}")
     })?;
-    let url = page_url(server.addr());
+    let texts = shadelab_lab::Texts::new(request.lang.map_or(shadelab_lab::Lang::En, Into::into));
+    // The page speaks the language asked for; the first line stays the same
+    // in every language, for scripts that read the address from it.
+    let url = match request.lang {
+        Some(lang) => format!("{}#lang={}", page_url(server.addr()), lang.code()),
+        None => page_url(server.addr()),
+    };
     say(&format!("shadelab viewer: {url}"));
     if !request.host.is_loopback() {
-        say(&format!(
-            "note: listening on {}, so other machines that can reach this one can open it",
-            request.host
-        ));
+        say(&texts.fill("cli.view_remote", &[("host", &request.host.to_string())]));
     }
-    say("Press Ctrl+C to stop.");
+    say(texts.get("cli.view_stop"));
     if request.open {
-        open_browser(&url);
+        open_browser(&url, &texts);
     }
     server.run(site);
     Ok(())
@@ -73,14 +78,14 @@ fn page_url(addr: SocketAddr) -> String {
 }
 
 /// Opens `url` in the desktop's browser, when there is a desktop.
-fn open_browser(url: &str) {
+fn open_browser(url: &str, texts: &shadelab_lab::Texts) {
     // Without a display, opening would at best fail and at worst start a
     // text browser in this terminal.
     let has_display = !cfg!(all(unix, not(target_os = "macos")))
         || std::env::var_os("DISPLAY").is_some()
         || std::env::var_os("WAYLAND_DISPLAY").is_some();
     if !has_display || open::that_detached(url).is_err() {
-        say(&format!("Open {url} in a browser."));
+        say(&texts.fill("cli.view_open", &[("url", url)]));
     }
 }
 

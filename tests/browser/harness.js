@@ -42,8 +42,7 @@ export function useViewer() {
       headless: true,
       acceptDownloads: true,
       viewport: { width: 1600, height: 1000 },
-      args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-        '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+      args: LAUNCH_ARGS,
     });
   });
 
@@ -54,9 +53,34 @@ export function useViewer() {
   });
 }
 
+const LAUNCH_ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+  '--disable-background-networking', '--disable-component-update', '--disable-sync'];
+
+/**
+ * A second browser context with its own fresh profile, for options the
+ * shared one cannot change (a device pixel ratio): `options` are
+ * playwright's (viewport, deviceScaleFactor). Close it with `.close()`.
+ */
+export async function otherContext(options) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'shadelab-chromium-'));
+  const other = await chromium.launchPersistentContext(dir, {
+    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+    headless: true,
+    acceptDownloads: true,
+    args: LAUNCH_ARGS,
+    ...options,
+  });
+  const close = other.close.bind(other);
+  other.close = async () => {
+    await close();
+    fs.rmSync(dir, { recursive: true, force: true });
+  };
+  return other;
+}
+
 /** Opens the viewer (with `hash`), waits for three frames; returns the page and its problems. */
-export async function openViewer(hash = '', viewport) {
-  const page = await context.newPage();
+export async function openViewer(hash = '', viewport, inContext = context) {
+  const page = await inContext.newPage();
   if (viewport) await page.setViewportSize(viewport);
   const problems = [];
   page.on('console', (m) => {
@@ -78,6 +102,12 @@ export async function openViewer(hash = '', viewport) {
 export async function settle(page) {
   await page.evaluate(() => new Promise((r) => setTimeout(r, 200)));
   await page.evaluate(() => window.shadelab.idle());
+}
+
+/** Waits for the panels and then the open instrument. */
+export async function quiet(page) {
+  await settle(page);
+  await page.evaluate(() => window.shadelab.instrumentsIdle());
 }
 
 /** Changes the state as a control would, and waits for the three frames. */

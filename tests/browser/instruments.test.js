@@ -14,27 +14,31 @@ import os from 'node:os';
 import path from 'node:path';
 import {
   useViewer, context, baseUrl, ROOT, BIN, ARTIFACTS, METHODS,
-  openViewer, settle, update, digests, statistics, panelPixels, decodePng,
+  openViewer, settle, quiet, update, digests, statistics, panelPixels, decodePng,
 } from './harness.js';
 
 useViewer();
 
 const TMP = fs.mkdtempSync(path.join(os.tmpdir(), 'shadelab-instruments-'));
 
-/** Waits for the panels and then the open instrument. */
-async function quiet(page) {
-  await settle(page);
-  await page.evaluate(() => window.shadelab.instrumentsIdle());
-}
 
 /**
- * A screenshot of the page's top, the panels and the open instrument: 1600
- * pixels wide, `height` high, as the README shows them (docs/images/viewer-*.png
- * are copies).
+ * A screenshot of the page: the panels and, under them, the open
+ * instrument scrolled to `part` (a selector in it), 1600 × 1000 pixels, as
+ * the README shows them (docs/images/viewer-*.png are copies).
  */
-async function shot(page, name, height = 820) {
-  await page.evaluate(() => window.scrollTo(0, 0));
-  await page.screenshot({ path: path.join(ARTIFACTS, name), clip: { x: 0, y: 0, width: 1600, height } });
+async function shot(page, name, part) {
+  await page.evaluate((sel) => {
+    window.scrollTo(0, 0);
+    const tool = document.querySelector('#side .tool:not([hidden])');
+    const target = sel && tool?.querySelector(sel);
+    if (target) {
+      const side = document.querySelector('#side');
+      const tabs = side.querySelector('.tabs');
+      side.scrollTop += target.getBoundingClientRect().top - side.getBoundingClientRect().top - tabs.offsetHeight - 4;
+    }
+  }, part);
+  await page.screenshot({ path: path.join(ARTIFACTS, name) });
 }
 
 /** Clicks pixel (x, y) of a panel, as a user does, holding `modifiers`. */
@@ -87,7 +91,7 @@ test('clicking a pixel inspects it with the numbers `shadelab explain` prints', 
     const k = (190 * 480 + 290) * 4;
     assert.deepEqual([px[k], px[k + 1], px[k + 2]], m.color, m.method);
   }
-  await shot(page, 'inspector.png');
+  await shot(page, 'inspector.png', '.inspect-methods');
 
   // Drawn by the tiled rasterizer, it says it explains the scanline reference,
   // and its colours are the panel's within 1/255; in fixed point it says so too.
@@ -166,7 +170,7 @@ test('choosing a row plots the intensity the panels show, with its derivative an
   for (const m of METHODS) assert.equal(await page.locator(`.panel[data-method="${m}"] svg .mark-profile`).count(), 2);
   await page.locator('.plot-intensity').hover({ position: { x: 200, y: 100 } });
   assert.match(await page.locator('#tool-profile .readout').innerText(), /^Pixel \(\d+, 230\): Flat [\d.]+ · Gouraud/);
-  await shot(page, 'profile.png', 1000);
+  await shot(page, 'profile.png', '.legend');
 
   // Alt+drag draws a line to plot along.
   const box = await page.locator('.panel[data-method="gouraud"] canvas').boundingBox();
@@ -223,7 +227,7 @@ test('the error maps of a sphere are those `shadelab errors` computes and prints
     }
     assert.equal(differing, 0, `${name}: the page's picture is the sheet's`);
   }
-  await shot(page, 'errors.png');
+  await shot(page, 'errors.png', '.scale');
   // The worst pixel, one click away.
   await page.locator('#tool-errors tr[data-method="gouraud"] button.link').click();
   await quiet(page);
@@ -269,7 +273,7 @@ test('each overlay draws on the panels what `shadelab render --overlay` draws', 
       assert.equal(differing, 0, `${m} with ${name}: the page's pixels are the command line's`);
       assert.ok(colored > 10, `${m}: ${colored} pixels in the colour of ${name}`);
     }
-    if (name === 'vertex-normals') await shot(page, 'overlays.png');
+    if (name === 'vertex-normals') await shot(page, 'overlays.png', 'table');
     await page.locator(`input[data-overlay="${name}"][data-panel="all"]`).uncheck();
     await quiet(page);
     assert.deepEqual(await digests(page), plain, `${name} off: the pictures are back`);
@@ -316,7 +320,7 @@ test('an indexed palette of N shades draws exactly N shades, on the scanline ras
       await quiet(page);
       const text = await page.evaluate(() => window.shadelab.inspection.text);
       assert.match(text, /Palette: intensity I = [\d.]+, shade k = min\(N − 1, ⌊I·8⌋\) = \d, entry 0 \+ \d = \d\./);
-      await shot(page, 'palette.png');
+      await shot(page, 'palette.png', '.inspect-methods');
     }
   }
   // The panel is the command line's picture.
@@ -358,7 +362,7 @@ test('fixed-point interpolation changes the picture; with 20 bits it is floating
   await update(page, 's.fixedPoint = 8; s.profile = { row: 240 }');
   await page.evaluate(() => window.shadelab.setTab('profile'));
   await quiet(page);
-  await shot(page, 'fixed-point.png');
+  await shot(page, 'fixed-point.png', '.legend');
   assert.deepEqual(problems, []);
   await page.close();
 });
@@ -379,7 +383,7 @@ test('the quad study turns a quad: whole, its centre changes; as two triangles, 
   assert.ok(Math.abs(corner.fans_centre - 0.5) < 0.02);
   assert.match(await page.locator('#tool-quad figure[data-kind="whole"] figcaption').innerText(), /centre: I = 0\.\d{3}/);
   await at(30);
-  await shot(page, 'quad.png');
+  await shot(page, 'quad.png', '.quad-pictures');
   assert.deepEqual(problems, []);
   await page.close();
 });
@@ -405,7 +409,7 @@ test('the cost of each method: lighting evaluations per polygon, vertex and pixe
   await page.waitForFunction(() => document.querySelectorAll('#tool-cost td.time .hint').length === 3, null, { timeout: 60000 });
   for (const m of METHODS) assert.match((await page.locator(`#tool-cost tr[data-method="${m}"] td.time`).innerText()).trim(), /^[\d.]+ \(fastest [\d.]+\)$/);
   await quiet(page);
-  await shot(page, 'cost.png');
+  await shot(page, 'cost.png', 'table');
   assert.deepEqual(problems, []);
   await page.close();
 });
@@ -417,9 +421,9 @@ for (const lang of ['en', 'ru', 'sk', 'cs']) TABLES[lang] = (await import(path.j
 const placeholders = (s) => [...s.matchAll(/\{(\w+)\}/g)].map((m) => m[1]).sort();
 /** Strings that are the same in a translation: symbols, units, names. */
 const SAME = {
-  all: ['app.heading', 'color.r', 'color.g', 'color.b', 'light.x', 'light.y', 'light.z'],
-  sk: ['panel.time', 'inspector.pixel', 'profile.readout', 'group.model', 'model.source'],
-  cs: ['panel.time', 'inspector.pixel', 'profile.readout', 'group.model', 'model.source'],
+  all: ['app.heading', 'color.r', 'color.g', 'color.b', 'model.summary'],
+  sk: ['panel.time', 'inspector.pixel', 'profile.readout', 'group.model', 'model.source', 'quiz.panel'],
+  cs: ['panel.time', 'inspector.pixel', 'profile.readout', 'group.model', 'model.source', 'quiz.panel', 'count.polygons.one'],
   ru: [],
 };
 
@@ -482,7 +486,7 @@ test('switching the language changes every label and explanation; the choice is 
     assert.deepEqual(untranslated, [], `${lang}: strings still in English`);
     await page.locator('#tab-inspector').click();
     await quiet(page);
-    await shot(page, `language-${lang}.png`);
+    await shot(page, `language-${lang}.png`, '.inspect-methods');
   }
   // The link carries the language: a new page opens in Czech.
   const hash = await page.evaluate(() => location.hash);

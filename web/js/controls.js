@@ -23,6 +23,11 @@ export class Controls {
     for (const r of this.refreshers) r();
   }
 
+  /** Runs `f` on every refresh (a part of the form that rebuilds itself). */
+  onRefresh(f) {
+    this.refreshers.push(f);
+  }
+
   group(key, name) {
     const fs = el('fieldset', { 'data-group': name }, [el('legend', { text: t(key) })]);
     this.form.append(fs);
@@ -56,21 +61,26 @@ export class Controls {
     });
     this.refreshers.push(fill);
     fill();
-    parent.append(el('div', { class: 'row' }, [el('label', { for: id, text: label }), select]));
+    parent.append(el('div', { class: 'row', 'data-control': name }, [el('label', { for: id, text: label }), select]));
     return select;
   }
 
-  /** A slider with a number box beside it, both labelled. */
-  range(parent, { name, label, min, max, step, get, set, hint, visible }) {
+  /**
+   * A slider with a number box beside it, both labelled. The slider spans
+   * `min`..`max`; the number box accepts `accept` ([lo, hi], default the
+   * slider's span), and a value beyond the slider leaves it at its end.
+   */
+  range(parent, { name, label, min, max, step, accept, get, set, hint, visible }) {
     const id = nextId(name);
     const value = (v) => (typeof v === 'function' ? v() : v);
     const bounds = () => [value(min), value(max)];
+    const accepted = () => (accept ? value(accept) : bounds());
     const range = el('input', { type: 'range', id, name, step: String(step) });
     const number = el('input', { type: 'number', step: String(step), 'aria-label': t('control.number', { label }) });
     const hintEl = hint ? el('p', { class: 'hint' }) : null;
-    const row = el('div', { class: 'row' }, [el('label', { for: id, text: label }), el('div', { class: 'pair' }, [range, number])]);
+    const row = el('div', { class: 'row', 'data-control': name }, [el('label', { for: id, text: label }), el('div', { class: 'pair' }, [range, number])]);
     const apply = (input) => {
-      const [lo, hi] = bounds();
+      const [lo, hi] = input === number ? accepted() : bounds();
       let v = Number(input.value);
       if (input.value === '' || !Number.isFinite(v)) return;
       v = Math.min(hi, Math.max(lo, v));
@@ -80,9 +90,12 @@ export class Controls {
     };
     const sync = (except) => {
       const [lo, hi] = bounds();
+      const [alo, ahi] = accepted();
+      range.min = String(lo);
+      range.max = String(hi);
+      number.min = String(alo);
+      number.max = String(ahi);
       for (const input of [range, number]) {
-        input.min = String(lo);
-        input.max = String(hi);
         if (input !== except) input.value = String(get());
       }
       if (hintEl) hintEl.textContent = hint();

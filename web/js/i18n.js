@@ -73,6 +73,17 @@ export function translateDocument(root = document) {
   document.title = t('app.title');
 }
 
+/**
+ * A count in words: `key`'s form for `n` in the language (`key.one`,
+ * `key.few`, `key.many` or `key.other`, as Intl.PluralRules chooses), with
+ * `{n}` the count formatted as the page shows counts.
+ */
+export function plural(key, n, values = {}) {
+  const category = new Intl.PluralRules(t('app.locale')).select(n);
+  const form = `${key}.${category}` in table ? `${key}.${category}` : `${key}.other`;
+  return t(form, { n: formatCount(n), ...values });
+}
+
 /** Formats an integer with the language's grouping, as the page shows counts. */
 export function formatCount(n) {
   return Number(n).toLocaleString(t('app.locale'));

@@ -5,12 +5,17 @@
 // and the instruments' settings) and `view` (language, open tab); every
 // change re-renders the three panels and rewrites the link. Instruments
 // compute on demand, once the panels are still, so dragging stays fast.
-import { t, lab, translateDocument, formatCount, setLanguage, negotiate, language, LANGUAGE_NAMES } from './i18n.js';
+// Presenting (present.js) draws the panels larger; the quiz (quiz.js) gives
+// the panels scenes of its own for a while.
+import { t, lab, plural, translateDocument, setLanguage, negotiate, language, LANGUAGE_NAMES } from './i18n.js';
 import { Panel, ImagePanel, paint } from './panels.js';
-import { buildForm } from './form.js';
+import { buildForm, lightSwatch } from './form.js';
 import { Side } from './side.js';
 import { attachInteraction } from './interaction.js';
-import { exportPng, exportScene } from './export.js';
+import { exportPng, exportScene, exportAnimation } from './export.js';
+import { markerPositions, dragLight, RADIUS } from './lights.js';
+import { Present } from './present.js';
+import { Quiz } from './quiz.js';
 import { heatScale } from './tools/errors.js';
 import {
   METHODS, MAX_FILE_MIB, LANGUAGES,
@@ -29,6 +34,12 @@ let exactPanel = null;
 let form = null;
 let side = null;
 let dragMode = 'camera';
+/** The light that Shift+drag and the arrow keys with Shift move: the last one touched. */
+let activeLight = 0;
+/** The light whose marker is being dragged, or null. */
+let dragging = null;
+let present = null;
+let quiz = null;
 /** Counts changes of the state: answers computed for an older one are dropped. */
 let generation = 0;
 /** The scale the error maps were last asked for (the three share one). */
@@ -52,9 +63,9 @@ function clearMessage() {
 function summaryText(summary) {
   return t('model.summary', {
     name: summary.name,
-    vertices: formatCount(summary.vertices),
-    polygons: formatCount(summary.polygons),
-    triangles: formatCount(summary.triangles),
+    vertices: plural('count.vertices', summary.vertices),
+    polygons: plural('count.polygons', summary.polygons),
+    triangles: plural('count.triangles', summary.triangles),
   });
 }
 
@@ -67,22 +78,33 @@ function setStatus(text) {
 // ---- rendering ----
 
 const modelInfo = () => models.find((m) => m.name === state.model) ?? null;
-const errorsShown = () => state.errors && hasExactSurface(state);
+const errorsShown = () => state.errors && hasExactSurface(state) && !quiz?.on;
+/** The state the panels draw: presenting draws them at the screen's pixels. */
+const shownState = () => {
+  const size = present?.renderSize();
+  return size ? { ...state, size } : state;
+};
 
 let linkTimer = 0;
 function render() {
   const errors = errorsShown();
   if (state.errorScale !== null) errorScale = state.errorScale;
+  const shown = shownState();
   for (const panel of panels) {
     panel.render({
-      scene: sceneToml(state, panel.method),
-      overlays: state.overlays[panel.method].join(','),
+      scene: quiz?.on ? quiz.sceneFor(panel.method) : sceneToml(shown, panel.method),
+      overlays: quiz?.on ? '' : state.overlays[panel.method].join(','),
       errors: errors ? { scale: errorScale, exact: panel.method === 'flat', bar: panel.method === 'flat' ? [16, 200] : undefined } : null,
       generation,
+      gouraudSpecular: state.gouraudSpecular,
     });
   }
   document.body.classList.toggle('showing-errors', errors);
   exactPanel.figure.hidden = !errors;
+  if (errors !== exactShown) {
+    exactShown = errors;
+    if (present?.on) present.layout();
+  }
   markPanels();
   clearTimeout(linkTimer);
   linkTimer = setTimeout(writeLink, 150);
@@ -93,10 +115,57 @@ function rerender() {
   render();
 }
 
+let exactShown = false;
+
 function markPanels() {
-  const profile = state.profile;
-  for (const p of [...panels, exactPanel]) p.marks.set({ pixel: state.pixel, profile });
+  // The instruments' marks are in the pixels of the state's size: not while presenting.
+  const plain = !present?.on && !quiz?.on;
+  const profile = plain ? state.profile : null;
+  for (const p of [...panels, exactPanel]) p.marks.set({ pixel: plain ? state.pixel : null, profile });
+  markLights();
 }
+
+/** The lights' markers on every panel, from the camera of the panel's last frame. */
+function markLights() {
+  for (const p of panels) {
+    const f = p.last;
+    const markers = quiz?.on || !f ? [] : markerPositions(state.lights, f.view, f.width, f.height);
+    for (const m of markers) {
+      m.color = lightSwatch(state.lights[m.k]);
+      m.active = m.k === activeLight;
+    }
+    p.marks.set({ lights: markers, circle: dragging !== null ? RADIUS : false });
+  }
+}
+
+/** Lets the pointer find and move the lights' markers (interaction.js). */
+const lightHandles = {
+  active: () => activeLight,
+  select: (k) => {
+    activeLight = k;
+    dragging = k;
+    markLights();
+  },
+  at: (canvas, x, y, reach) => {
+    const p = panels.find((q) => q.canvas === canvas);
+    if (!p?.last || quiz?.on) return null;
+    let best = null;
+    for (const m of markerPositions(state.lights, p.last.view, p.last.width, p.last.height)) {
+      const d = Math.hypot(m.x - x, m.y - y);
+      if (d <= reach && (best === null || d < best.d)) best = { k: m.k, d };
+    }
+    return best?.k ?? null;
+  },
+  drag: (k, canvas, x, y) => {
+    const p = panels.find((q) => q.canvas === canvas);
+    if (!p?.last || !state.lights[k]) return;
+    state.lights[k] = dragLight(state.lights[k], p.last.view, p.last.width, p.last.height, x, y);
+  },
+  release: () => {
+    dragging = null;
+    markLights();
+  },
+};
 
 function writeLink() {
   const hash = toHash(state, view);
@@ -109,8 +178,10 @@ function changed() {
   generation += 1;
   if (state.pixel && state.pixel.some((v) => v >= state.size)) state.pixel = null;
   if (state.profile?.row !== undefined && state.profile.row >= state.size) state.profile = { row: state.size - 1 };
+  if (activeLight >= state.lights.length) activeLight = Math.max(0, state.lights.length - 1);
   form.refresh();
   side.refresh();
+  present.refresh();
   side.tools.inspector.invalidate();
   render();
 }
@@ -134,6 +205,7 @@ function panelFrame(panel, frame) {
     if (frame.exact) exactPanel.show(frame.exact);
     if (frame.bar) errorBar = frame.bar;
   }
+  markLights();
   if (panels.every((p) => p.last?.generation === frame.generation)) framesComplete();
 }
 
@@ -163,7 +235,8 @@ async function runInstruments() {
   const mine = instrumentTimer;
   try {
     await Promise.all(panels.map((p) => p.idle()));
-    await side.update();
+    // The instruments are out of sight while presenting and in the quiz.
+    if (!present.on && !quiz.on) await side.update();
   } finally {
     if (mine === instrumentTimer) instrumentsBusy = false;
   }
@@ -187,7 +260,14 @@ function inspectPixel(x, y) {
 }
 
 const picks = {
-  pixel: (x, y) => inspectPixel(x, y),
+  pixel: (x, y, canvas) => {
+    const panel = panels.find((p) => p.canvas === canvas);
+    if (quiz.on) {
+      if (panel) quiz.clickPanel(panel.method, x, y);
+      return;
+    }
+    inspectPixel(x, y);
+  },
   row: (y) => {
     state.profile = { row: y };
     view.tab = 'profile';
@@ -199,6 +279,9 @@ const picks = {
     view.tab = 'profile';
     side.show();
     changed();
+  },
+  hover: (at) => {
+    if (view.tab === 'inspector' && !present.on && !quiz.on) side.tools.inspector.hover(at);
   },
   preview: (line) => {
     for (const p of [...panels, exactPanel]) p.marks.set({ preview: line });
@@ -232,12 +315,22 @@ async function openFile(file) {
   }
   userFile = summaries[0];
   clearMessage();
-  state.model = userFile.name;
+  setModel(userFile.name);
+}
+
+/**
+ * Shows model `name` (built in, or the file loaded), framed: the camera
+ * goes back to its start, which fits the model's bounding sphere.
+ */
+function setModel(name, notify = true) {
+  const file = userFile && name === userFile.name ? userFile : null;
+  state.model = name;
   state.detail = null;
   state.crease = null;
-  if (state.normals === 'file' && !userFile.has_normals) state.normals = 'auto';
-  setStatus(summaryText(userFile));
-  changed();
+  state.camera = { ...defaultState().camera };
+  if (state.normals === 'file' && !file?.has_normals) state.normals = 'auto';
+  setStatus(file ? summaryText(file) : '');
+  if (notify) changed();
 }
 
 function attachDrop(zone) {
@@ -285,6 +378,8 @@ async function useLanguage(lang) {
   if (form) {
     form = buildForm($('#controls'), page);
     side.build();
+    if (present.on) present.build();
+    quiz.draw();
     scheduleInstruments();
   }
 }
@@ -315,7 +410,17 @@ const page = {
   get generation() { return generation; },
   get errorBar() { return errorBar; },
   models: () => models,
+  modelName: (name) => t(`model.name.${name}`),
   modelInfo,
+  setModel,
+  setActiveLight: (k) => {
+    if (activeLight === k) return;
+    activeLight = k;
+    markLights();
+  },
+  visiblePanels: () => (errorsShown() ? [exactPanel, ...panels] : panels),
+  size: () => shownState().size,
+  ask: (method, request) => panels.find((p) => p.method === method).ask(request),
   userFile: () => userFile,
   dragMode: () => dragMode,
   setDragMode: (v) => (dragMode = v),
@@ -334,6 +439,31 @@ const page = {
 function resetCamera() {
   state.camera = { ...defaultState().camera };
   changed();
+}
+
+let savingAnimation = null;
+/** Saves one orbit of the three panels as an animated PNG; resolves to what was saved. */
+function saveAnimation() {
+  if (savingAnimation) return savingAnimation;
+  const button = $('#export-animation');
+  button.disabled = true;
+  savingAnimation = (async () => {
+    try {
+      const saved = await exportAnimation(state, panels, (k, n) => setStatus(t('animation.progress', { k, n })));
+      setStatus(t('animation.saved', { frames: saved.frames, width: saved.width, height: saved.height }));
+      return saved;
+    } catch (error) {
+      setStatus('');
+      showMessage(t('error.animation', { message: error.message }));
+      return null;
+    } finally {
+      button.disabled = false;
+      savingAnimation = null;
+      // The workers drew the orbit: draw the panels as they were.
+      rerender();
+    }
+  })();
+  return savingAnimation;
 }
 
 // ---- start ----
@@ -388,14 +518,17 @@ async function start() {
   // The link's complaints, in the page's language.
   if (messages.length) showMessage(applyLink().join('\n'), 'info');
   setStatus('');
+  present = new Present(page);
+  quiz = new Quiz(page);
   form = buildForm($('#controls'), page);
   side = new Side($('#side'), page);
   side.build();
-  attachInteraction([...panels, exactPanel].map((p) => p.canvas), state, changed, () => dragMode, resetCamera, picks);
+  attachInteraction([...panels, exactPanel].map((p) => p.canvas), state, changed, () => dragMode, resetCamera, picks, lightHandles);
   attachDrop($('#panels'));
   $('#message .message-close').addEventListener('click', clearMessage);
   $('#controls').addEventListener('submit', (e) => e.preventDefault());
   $('#export-png').addEventListener('click', () => exportPng(panels));
+  $('#export-animation').addEventListener('click', saveAnimation);
   $('#export-scene').addEventListener('click', () => exportScene(state, userFile));
   $('#copy-link').addEventListener('click', async () => {
     writeLink();
@@ -413,10 +546,13 @@ async function start() {
     clearMessage();
     changed();
   });
-  $('#present').addEventListener('click', (e) => {
-    const on = document.body.classList.toggle('presenting');
-    e.currentTarget.setAttribute('aria-pressed', String(on));
+  $('#present').addEventListener('click', () => present.toggle());
+  $('#quiz').addEventListener('click', () => quiz.toggle());
+  // Enlarged panels show their pixels as squares; reduced, smoothed.
+  const scaled = new ResizeObserver((entries) => {
+    for (const e of entries) e.target.classList.toggle('enlarged', e.target.clientWidth * (window.devicePixelRatio || 1) >= e.target.width);
   });
+  for (const p of [...panels, exactPanel]) scaled.observe(p.canvas);
   window.addEventListener('hashchange', async () => {
     if (location.hash === toHash(state, view)) return;
     const keep = state;
@@ -461,6 +597,12 @@ function exposeForTests() {
     get profile() { return side.tools.profile.data; },
     get quad() { return side.tools.quad.data; },
     frameTimes: () => Object.fromEntries(panels.map((p) => [p.method, [...p.times]])),
+    /** The scene each panel was last asked to draw. */
+    panelScene: (method) => (quiz.on ? quiz.sceneFor(method) : sceneToml(shownState(), method)),
+    get present() { return present; },
+    get quiz() { return quiz; },
+    saveAnimation,
+    setModel,
     setTab,
     openFile,
     paint,

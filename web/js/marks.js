@@ -1,7 +1,7 @@
 // Marks drawn over a panel, never into its pixels: the inspected pixel, its
-// scanline, the polygon the scanline walk went round (its vertices lettered as
-// the inspector names them) with the span from P to Q, and the profile's row
-// or line. An SVG laid over the canvas, in the image's pixel coordinates
+// scanline, the polygon the scanline walk went round with the span from P to
+// Q (the inspector's diagram letters them), and the profile's row
+// or line; and the lights' markers (js/lights.js), which a drag moves. An SVG laid over the canvas, in the image's pixel coordinates
 // (pixel (x, y) covers x..x+1, y..y+1), so that a mark sits on the pixel it
 // names at any display size; strokes and labels keep their size on the screen.
 
@@ -24,11 +24,15 @@ export class Marks {
     this.profile = null;
     this.inspection = null;
     this.preview = null;
+    this.lights = [];
+    this.circle = false;
     new ResizeObserver(() => this.draw()).observe(canvas);
   }
 
   /** Sets what to mark (undefined leaves a mark as it is) and draws. */
-  set({ pixel, profile, inspection, preview } = {}) {
+  set({ pixel, profile, inspection, preview, lights, circle } = {}) {
+    if (lights !== undefined) this.lights = lights;
+    if (circle !== undefined) this.circle = circle;
     if (pixel !== undefined) this.pixel = pixel;
     if (profile !== undefined) this.profile = profile;
     if (inspection !== undefined) this.inspection = inspection;
@@ -63,28 +67,27 @@ export class Marks {
       // The scanline through the pixel, faint across the image, bold from P to Q below.
       add('line', { x1: 0, y1: m.row + 0.5, x2: w, y2: m.row + 0.5, class: 'mark-scanline' });
     }
+    // The polygon and the span from P to Q, unlabelled: the letters are in the
+    // inspector's diagram beside the panels, so that no text covers the picture.
     if (m && m.walked.length >= 3) {
       add('polygon', { points: m.walked.map(([x, y]) => `${x},${y}`).join(' '), class: 'mark-polygon' });
-      // The vertices by the letters the inspector names them with, set outside the polygon.
-      const cx = m.walked.reduce((a, [x]) => a + x, 0) / m.walked.length;
-      const cy = m.walked.reduce((a, [, y]) => a + y, 0) / m.walked.length;
-      m.walked.forEach(([x, y], k) => {
-        const d = Math.hypot(x - cx, y - cy) || 1;
-        const off = 9 * u;
-        add('text', {
-          x: x + ((x - cx) / d) * off, y: y + ((y - cy) / d) * off + 5 * u,
-          'text-anchor': 'middle', 'font-size': 13 * u, class: 'mark-label mark-vertex',
-        }, String.fromCharCode(65 + (k % 26)));
-      });
     }
     if (m && m.p && m.q) {
       add('line', { x1: m.p[0], y1: m.p[1], x2: m.q[0], y2: m.q[1], class: 'mark-span' });
-      for (const [name, [x, y], anchor] of [['P', m.p, 'end'], ['Q', m.q, 'start']]) {
-        add('circle', { cx: x, cy: y, r: 3.5 * u, class: 'mark-point' });
-        const dx = (anchor === 'end' ? -6 : 6) * u;
-        // Below the scanline: the polygon's vertex letters sit outside it, often above.
-        add('text', { x: x + dx, y: y + 16 * u, 'text-anchor': anchor, 'font-size': 14 * u, class: 'mark-label' }, name);
-      }
+      for (const [x, y] of [m.p, m.q]) add('circle', { cx: x, cy: y, r: 3 * u, class: 'mark-point' });
+    }
+
+    // The lights: a numbered disc in the light's colour each, hollow when the
+    // light is behind the model; while one is dragged, the circle of directions.
+    if (this.circle && this.lights.length) {
+      const r = this.circle * Math.min(w, h);
+      add('circle', { cx: w / 2, cy: h / 2, r, class: 'mark-light-circle' });
+    }
+    for (const m of this.lights) {
+      const g = node('g', { class: `mark-light${m.behind ? ' behind' : ''}${m.active ? ' active' : ''}`, 'data-light': m.k });
+      g.append(node('circle', { cx: m.x, cy: m.y, r: 8 * u, 'vector-effect': 'non-scaling-stroke', fill: m.behind ? 'none' : m.color, stroke: m.behind ? m.color : '#000' }));
+      g.append(node('text', { x: m.x, y: m.y + 4 * u, 'text-anchor': 'middle', 'font-size': 11 * u, class: 'mark-label' }, String(m.k + 1)));
+      this.svg.append(g);
     }
 
     if (this.pixel) {

@@ -3,11 +3,20 @@
 // requests replace each other and only the last is drawn next, so dragging
 // never queues up stale frames. Instruments ask the same worker with `ask`,
 // between frames.
-import { t, formatCount, formatNumber } from './i18n.js';
+import { t, plural, formatCount, formatNumber } from './i18n.js';
+import { el } from './dom.js';
 import { Marks } from './marks.js';
 
 /** How many recent frame times each panel keeps (for the page and its tests). */
 const HISTORY = 240;
+/** The caption's time is the median of this many recent frames. */
+export const CAPTION_FRAMES = 9;
+
+/** The median of `xs`. */
+export function median(xs) {
+  const s = [...xs].sort((a, b) => a - b);
+  return s.length % 2 ? s[(s.length - 1) / 2] : (s[s.length / 2 - 1] + s[s.length / 2]) / 2;
+}
 
 /** Draws RGBA `pixels` of `width` × `height` into `canvas`. */
 export function paint(canvas, context, { width, height, pixels }) {
@@ -43,6 +52,7 @@ export class Panel {
     // Frames arrive as pixels, and instruments read pixels back: keep the canvas in memory.
     this.context = this.canvas.getContext('2d', { willReadFrequently: true });
     this.timeEl = figure.querySelector('.time');
+    this.variantEl = figure.querySelector('.variant');
     this.rasterEl = figure.querySelector('.raster');
     this.statsEl = figure.querySelector('.stats');
     this.marks = new Marks(this.canvas);
@@ -113,9 +123,10 @@ export class Panel {
     this.busy = true;
     this.figure.classList.add('busy');
     try {
-      const { generation, ...msg } = request;
+      const { generation, gouraudSpecular, ...msg } = request;
       const frame = await this.ask({ type: 'render', ...msg });
       frame.generation = generation;
+      frame.gouraudSpecular = gouraudSpecular;
       frame.overlays = msg.overlays;
       this.#draw(frame);
       this.onframe(this, frame);
@@ -148,11 +159,32 @@ export class Panel {
     this.relabel();
   }
 
-  /** Writes the caption and the counts under the panel in the current language. */
+  /** The caption's time: the median render time of the last frames, and how many. */
+  captionTime() {
+    const recent = this.times.slice(-CAPTION_FRAMES);
+    return { ms: recent.length ? median(recent) : 0, frames: recent.length };
+  }
+
+  /**
+   * Writes the caption and the counts under the panel in the current
+   * language; the Gouraud panel's says whether its vertex lighting had the
+   * specular term.
+   */
   relabel() {
     const f = this.last;
     if (!f) return;
-    this.timeEl.textContent = t('panel.time', { ms: formatNumber(f.ms, 1) });
+    if (this.variantEl) {
+      const key = f.gouraudSpecular ? 'panel.gouraud.specular' : 'panel.gouraud.noSpecular';
+      this.variantEl.textContent = t(key);
+      this.variantEl.title = t(`${key}.title`);
+      this.variantEl.dataset.specular = String(!!f.gouraudSpecular);
+    }
+    const { ms, frames } = this.captionTime();
+    this.timeEl.replaceChildren(
+      el('span', { class: 'time-label', text: plural('panel.time.label', frames) }),
+      el('span', { class: 'time-value', text: t('panel.time', { ms: formatNumber(ms, 1) }) }),
+    );
+    this.timeEl.title = plural('panel.time.title', frames);
     this.rasterEl.textContent = t(`panel.raster.${f.rasterizer}`);
     this.rasterEl.dataset.rasterizer = f.rasterizer;
     this.rasterEl.title = t(`panel.raster.${f.rasterizer}.title`);
@@ -167,9 +199,9 @@ export class Panel {
     }
     const s = f.stats;
     this.statsEl.textContent = t(`panel.stats.${this.method}`, {
-      evaluations: formatCount(s.lighting_evaluations),
-      polygons: formatCount(s.rasterized),
-      pixels: formatCount(s.fragments_shaded),
+      evaluations: plural('count.evaluations', s.lighting_evaluations),
+      polygons: plural('count.polygonsDrawn', s.rasterized),
+      pixels: plural('count.pixelsShaded', s.fragments_shaded),
     });
   }
 }

@@ -1,6 +1,7 @@
 // Line plots on a 2D canvas, for the profile and the quad study: axes with
 // round ticks, curves with gaps where a value is missing, vertical marks
-// (polygon edges, a cursor). Drawn at the screen's resolution.
+// (polygon edges, a cursor). Drawn at the screen's resolution, with type
+// and lines large enough to read on a projected screen.
 import { formatNumber } from './i18n.js';
 
 const AXIS = 'rgba(236, 236, 241, 0.55)';
@@ -25,6 +26,9 @@ export function ticks(lo, hi, count = 5) {
  */
 export function drawPlot(canvas, spec) {
   const dpr = window.devicePixelRatio || 1;
+  // What the axes say, for a reader of the page's text (and its tests).
+  canvas.dataset.xLabel = spec.xLabel ?? '';
+  canvas.dataset.yLabel = spec.yLabel ?? '';
   const cssW = canvas.clientWidth || 300;
   const cssH = canvas.clientHeight || 150;
   canvas.width = Math.round(cssW * dpr);
@@ -32,8 +36,8 @@ export function drawPlot(canvas, spec) {
   const g = canvas.getContext('2d');
   g.setTransform(dpr, 0, 0, dpr, 0, 0);
   g.clearRect(0, 0, cssW, cssH);
-  const font = parseFloat(getComputedStyle(canvas).fontSize) || 13;
-  g.font = `${font * 0.85}px system-ui, sans-serif`;
+  const font = Math.max(13, parseFloat(getComputedStyle(canvas).fontSize) || 13);
+  g.font = `${font}px system-ui, sans-serif`;
   const yTicks = ticks(spec.y[0], spec.y[1], Math.max(4, Math.round(cssH / 35)));
   const digits = yTicks.step < 1 ? Math.min(3, Math.ceil(-Math.log10(yTicks.step))) : 0;
   const yText = yTicks.values.map((v) => formatNumber(v, digits));
@@ -104,7 +108,7 @@ export function drawPlot(canvas, spec) {
   }
   for (const s of spec.series) {
     g.strokeStyle = s.color;
-    g.lineWidth = s.width ?? 1.5;
+    g.lineWidth = (s.width ?? 1.5) * 1.3;
     g.setLineDash(s.dash ?? []);
     g.beginPath();
     let open = false;

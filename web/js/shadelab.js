@@ -37,12 +37,18 @@ export class Shadelab {
 
   /**
    * Renders a scene given as TOML text. Returns {width, height, rasterizer,
-   * stats, cost, pixels}, `pixels` a Uint8ClampedArray copy of the RGBA frame.
+   * stats, cost, view, pixels, ms}: `pixels` a Uint8ClampedArray copy of the
+   * RGBA frame, `ms` the time the engine's call took (reading the scene and
+   * drawing it), without copying the pixels out or anything before or after.
    */
   render(sceneToml) {
     const text = encoder.encode(sceneToml);
     this.#input(text.length, (view) => view.set(text));
-    const info = this.#call(this.x.shadelab_render());
+    const start = performance.now();
+    const status = this.x.shadelab_render();
+    const ms = performance.now() - start;
+    const info = this.#call(status);
+    info.ms = ms;
     info.pixels = this.pixels();
     return info;
   }

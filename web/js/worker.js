@@ -5,7 +5,7 @@
 //   {type: 'init', module}               -> {type: 'ready', models}
 //   {type: 'load-file', id, name, bytes} -> {type: 'file-loaded', id, summary}
 //   {type: 'render', id, scene, overlays, errors}
-//                                        -> {type: 'frame', id, width, height, rasterizer, stats, cost, pixels, ms,
+//                                        -> {type: 'frame', id, width, height, rasterizer, stats, cost, view, pixels, ms,
 //                                            errors?, exact?, bar?}
 //   {type: 'heat', id, scale, overlays}  -> {type: 'heat', id, scale, pixels}
 //   {type: 'inspect', id, scene, x, y, lang}  -> {type: 'inspection', id, inspection}
@@ -19,7 +19,8 @@
 // comma-separated list) or its error map against the exact surface
 // (`errors: {scale, exact, bar}`: `pixels` is then the heat map, `exact` the
 // exact surface's image). `ms` is the time the engine took to render, measured
-// here around that call alone. A new request type is a new case below and a
+// here around that call alone (not the overlays, the error map, the copy of
+// the pixels or their way to the page). A new request type is a new case below and a
 // new export in crates/shadelab-wasm.
 import { Shadelab, ShadelabError } from './shadelab.js';
 
@@ -47,11 +48,9 @@ const handlers = {
   },
 
   render(msg) {
-    const start = performance.now();
     const frame = engine.render(msg.scene);
-    const ms = performance.now() - start;
-    const { width, height, rasterizer, stats, cost } = frame;
-    const reply = { type: 'frame', width, height, rasterizer, stats, cost, pixels: frame.pixels, ms };
+    const { width, height, rasterizer, stats, cost, view, ms } = frame;
+    const reply = { type: 'frame', width, height, rasterizer, stats, cost, view, pixels: frame.pixels, ms };
     if (msg.errors) {
       const answer = engine.errors({ ...msg.errors, overlays: msg.overlays ?? '' });
       const { heat, exact, bar } = answer.images;
@@ -100,9 +99,8 @@ const handlers = {
     let frame = null;
     for (let k = 0; k < (msg.warmup ?? 0); k++) engine.render(msg.scene);
     for (let k = 0; k < Math.max(1, msg.runs); k++) {
-      const start = performance.now();
       frame = engine.render(msg.scene);
-      times.push(performance.now() - start);
+      times.push(frame.ms);
     }
     return { type: 'cost', times, stats: frame.stats, cost: frame.cost, rasterizer: frame.rasterizer };
   },

@@ -21,7 +21,7 @@ pub use mesh_file::{
 pub use obj::{load_obj, load_obj_file, parse_obj, parse_obj_file};
 pub use output::{write_atomic, STDOUT_PATH};
 pub use ply::{load_ply, parse_ply};
-pub use png::{encode_png, read_png, write_png};
+pub use png::{encode_png, encode_png_with, read_png, write_png, write_png_with, PngCompression};
 pub use scene::{
     model_path, AmbientSection, CameraSection, InterpolationName, LightKindName, LightSection,
     MaterialSection, ModelSection, NormalsChoice, PolygonsName, RasterizerName, RenderSection,

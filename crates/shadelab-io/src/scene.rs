@@ -380,6 +380,17 @@ impl SceneFile {
     /// [`SceneError::Io`] when it cannot be read, is not a regular file or
     /// is too large, or [`SceneError::Parse`] (with line and column).
     pub fn load(path: &Path) -> Result<SceneFile, SceneError> {
+        let text = SceneFile::read_text(path)?;
+        SceneFile::parse(&text, &path.display().to_string())
+    }
+
+    /// The text of a scene file, read as [`SceneFile::load`] reads it (a
+    /// regular file, at most [`MAX_SCENE_BYTES`], UTF-8), not yet parsed:
+    /// for callers that merge other settings into the TOML first.
+    ///
+    /// # Errors
+    /// As [`SceneFile::load`].
+    pub fn read_text(path: &Path) -> Result<String, SceneError> {
         let name = path.display().to_string();
         let io = |source| SceneError::Io {
             path: name.clone(),
@@ -408,7 +419,7 @@ impl SceneFile {
                 e.utf8_error().valid_up_to()
             ),
         })?;
-        SceneFile::parse(&text, &name)
+        Ok(text)
     }
 
     /// Parses scene TOML; `name` is used in error messages. Lines may end

@@ -84,6 +84,9 @@ pub struct FrameInfo {
     pub stats: RenderStats,
     /// The lighting evaluations split by where the method makes them.
     pub cost: Evaluations,
+    /// The camera's view matrix (world to eye space), column-major: the page
+    /// places the lights' markers with it.
+    pub view: [f32; 16],
 }
 
 /// Lighting evaluations by granularity: each method evaluates the model at
@@ -257,6 +260,7 @@ impl Engine {
         self.frame_toml.push_str(toml);
         self.errors = None;
         let split = shadelab_lab::Cost::new(options.shading, stats, 0.0, 1);
+        let view = scene.camera.view().to_cols_array();
         Ok(FrameInfo {
             width: options.width,
             height: options.height,
@@ -267,6 +271,7 @@ impl Engine {
                 per_vertex: split.per_vertex,
                 per_pixel: split.per_pixel,
             },
+            view,
         })
     }
 

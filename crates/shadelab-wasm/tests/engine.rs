@@ -238,3 +238,43 @@ fn exports_speak_json() {
     let address = abi::shadelab_input(1000);
     assert!(!address.is_null());
 }
+
+#[test]
+fn a_frame_reports_the_camera_that_drew_it_and_its_lights() {
+    let mut engine = Engine::new();
+    let toml = scene(
+        "source = \"cube\"",
+        "gouraud",
+        "yaw = 40\npitch = 25\nzoom = 1.5\n",
+    );
+    let info = engine.render(&toml).unwrap();
+    let file = SceneFile::parse(&toml, "scene").unwrap();
+    let (resolved, _) = file.resolve(Path::new("")).unwrap();
+    assert_eq!(info.view, resolved.camera.view().to_cols_array());
+    // The view's rotation is orthonormal: the page turns light directions with it.
+    let m = info.view;
+    for (i, j) in [(0, 0), (0, 1), (1, 1), (1, 2), (2, 2), (0, 2)] {
+        let dot: f32 = (0..3).map(|k| m[4 * k + i] * m[4 * k + j]).sum();
+        assert!(
+            (dot - f32::from(u8::from(i == j))).abs() < 1e-5,
+            "{i} {j}: {dot}"
+        );
+    }
+    // Several lights of both kinds, and none: each is the command line's picture.
+    let lights = "[[lights]]\nkind = \"point\"\nposition = [2.0, 2.0, 3.0]\n\
+        [[lights]]\nkind = \"directional\"\ndirection = [1.0, 0.0, -0.2]\ncolor = [255, 0, 0]\n\
+        [[lights]]\nkind = \"point\"\nposition = [0.0, 3.0, 1.0]\ncolor = [0, 255, 0]\nintensity = 0.5\n\
+        [[lights]]\nkind = \"directional\"\ndirection = [0.0, 1.0, -0.3]\ncolor = [0, 0, 255]\n";
+    for prefix in [String::new(), "lights = []\n".to_owned()] {
+        let toml = format!(
+            "{prefix}{}{}",
+            scene("source = \"sphere\"\ndetail = 16", "phong", ""),
+            if prefix.is_empty() { lights } else { "" }
+        );
+        assert_eq!(
+            engine_image(&mut engine, &toml),
+            cli_image(&toml, Path::new("")),
+            "{toml}"
+        );
+    }
+}

@@ -2,8 +2,10 @@
 // reflection model was evaluated — once per polygon (flat), per vertex
 // (Gouraud) or per pixel (Phong) — from each panel's frames; and a
 // measurement on demand, the median of several frames rendered one method
-// at a time (so that the three do not share the processor).
-import { t, lab, formatNumber, formatCount } from '../i18n.js';
+// at a time (so that the three do not share the processor). Every sentence
+// under the table is made from the numbers in it, so that it says only
+// what they show.
+import { t, plural, formatNumber, formatCount } from '../i18n.js';
 import { el } from '../dom.js';
 
 const RUNS = 9;
@@ -27,12 +29,12 @@ export class CostTool {
 
   build(section) {
     section.append(el('h2', { text: t('tab.cost') }));
-    section.append(el('p', { class: 'lead', text: lab('about.cost') }));
+    section.append(el('p', { class: 'lead', text: t('cost.lead') }));
     this.table = el('div', { class: 'cost-table' });
     this.button = el('button', { type: 'button', text: t('cost.measure', { runs: RUNS }) });
     this.button.addEventListener('click', () => this.measure());
     this.status = el('p', { class: 'hint', 'aria-live': 'polite' });
-    section.append(this.table, el('div', { class: 'row' }, [this.button]), this.status, el('p', { class: 'hint', text: t('cost.note') }));
+    section.append(this.table, el('div', { class: 'row' }, [this.button]), this.status);
     this.update();
   }
 
@@ -82,6 +84,12 @@ export class CostTool {
       el('th', { scope: 'col', text: t('cost.timeHead') }),
       el('th', { scope: 'col', text: t('cost.evaluations') }),
     ]);
+    const where = (r) => {
+      const s = r.f.stats;
+      if (r.method === 'flat') return t('cost.per_polygon', { polygons: plural('count.polygonsDrawn', s.rasterized) });
+      if (r.method === 'phong') return t('cost.per_pixel', { pixels: plural('count.pixelsShaded', s.fragments_shaded) });
+      return t(`cost.per_vertex.${r.f.rasterizer}`);
+    };
     const body = rows.map((r) => el('tr', { 'data-method': r.method }, [
       el('th', { scope: 'row', text: t(`panel.${r.method}`) }),
       el('td', { class: 'time' }, [
@@ -92,14 +100,26 @@ export class CostTool {
       el('td', { class: 'evaluations' }, [
         el('span', { class: 'num', text: formatCount(r.evaluations) }),
         el('span', { class: 'bar bar-evaluations', style: { width: `${(100 * r.evaluations) / most}%` } }),
-        el('span', { class: 'where hint', text: t(`cost.${GRANULARITY[r.method]}`, { polygons: formatCount(r.f.stats.rasterized), pixels: formatCount(r.f.stats.fragments_shaded) }) }),
+        el('span', { class: 'where hint', text: where(r) }),
       ]),
     ]));
-    const f = rows[0].f;
+    const [flat, gouraud, phong] = rows;
+    const ratio = (a, b) => formatNumber(a / Math.max(b, 1e-9), 1);
+    const f = flat.f;
+    const recent = Math.min(RECENT, ...panels.map((p) => p.times.length));
+    const ps = phong.f.stats;
+    const sentences = [
+      ['cost.time', measured ? t('cost.timeMeasured', { runs: RUNS, warmup: WARMUP }) : plural('cost.timeRecent', recent)],
+      flat.evaluations > 0 && ['cost.evaluationRatio', t('cost.evaluationRatio', { gouraud: ratio(gouraud.evaluations, flat.evaluations), phong: ratio(phong.evaluations, flat.evaluations) })],
+      flat.time > 0 && ['cost.timeRatio', t('cost.timeRatio', { gouraud: ratio(gouraud.time, flat.time), phong: ratio(phong.time, flat.time) })],
+      ['cost.overdraw', t(ps.fragments_shaded > ps.covered_pixels ? 'cost.overdraw.some' : 'cost.overdraw.none', {
+        fragments: plural('count.pixelsShaded', ps.fragments_shaded), covered: plural('count.pixelsCovered', ps.covered_pixels),
+      })],
+      ['cost.frame', t('cost.frame', { polygons: plural('count.polygonsDrawn', f.stats.rasterized), culled: formatCount(f.stats.culled), rasterizer: t(`panel.raster.${f.rasterizer}`) })],
+    ].filter(Boolean);
     this.table.replaceChildren(
       el('table', {}, [el('thead', {}, [head]), el('tbody', {}, body)]),
-      el('p', { class: 'hint', text: measured ? t('cost.timeMeasured', { runs: RUNS }) : t('cost.time', { frames: RECENT }) }),
-      el('p', { class: 'hint', text: t('cost.frame', { polygons: formatCount(f.stats.rasterized), pixels: formatCount(f.stats.fragments_shaded), rasterizer: t(`panel.raster.${f.rasterizer}`) }) }),
+      ...sentences.map(([key, text]) => el('p', { class: 'hint', 'data-sentence': key, text })),
     );
   }
 }

@@ -204,7 +204,7 @@ export class ProfileTool {
       series: shown.map((c) => ({ ...style(c.kind), points: c.derivative.map((v, k) => [xOf(k + 0.5), v]) })),
       vlines,
       xLabel: row ? lab('plot.position') : t('profile.sample'),
-      yLabel: lab('plot.derivative'),
+      yLabel: t('plot.derivativeAxis'),
     });
     this.intensity.setAttribute('aria-label', this.title.textContent);
     this.derivative.setAttribute('aria-label', lab('plot.derivative_title'));
