@@ -4,7 +4,7 @@
 //! pixel (the measured constants of `shadelab_core::limits`), and the mesh
 //! it draws; [`check`] adds them up and refuses, before any frame is
 //! allocated, a command that would need more than
-//! [`MAX_MEMORY_BYTES`](shadelab_core::limits::MAX_MEMORY_BYTES).
+//! [`shadelab_core::limits::MAX_MEMORY_BYTES`].
 
 use shadelab_core::limits::{memory_estimate, MAX_MEMORY_BYTES};
 use shadelab_core::Mesh;

@@ -127,13 +127,16 @@ fn table_has_a_header_and_a_line_per_row() {
 
 #[test]
 fn missing_meshes_are_named_and_skipped() {
+    // A folder that exists but holds none of the meshes (a missing folder is
+    // an error: see tests/hostile_limits.rs).
+    let empty = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("bench-no-models");
+    std::fs::create_dir_all(&empty).unwrap();
+    let empty = empty.to_str().unwrap().to_owned();
     let mut args = TINY.to_vec();
     args.extend([
         "--json",
         "--models-dir",
-        "/nonexistent/models",
-        "--model",
-        "bunny,dragon,sphere",
+        &empty,
         "--shading",
         "flat",
         "--threads",
@@ -141,6 +144,8 @@ fn missing_meshes_are_named_and_skipped() {
         "--rasterizer",
         "tiled",
     ]);
+    // The default set: the meshes that are missing are named and skipped,
+    // the built-in models are measured.
     let out = shadelab(&args);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stderr = text(&out.stderr);
@@ -150,8 +155,15 @@ fn missing_meshes_are_named_and_skipped() {
     );
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let rows = json["rows"].as_array().unwrap();
-    assert_eq!(rows.len(), 1);
-    assert_eq!(rows[0]["model"], "sphere");
+    assert!(!rows.is_empty());
+    assert!(rows
+        .iter()
+        .all(|r| r["model"] != "bunny" && r["model"] != "dragon"));
+    // A mesh asked for by name and missing is an error that names it.
+    args.extend(["--model", "bunny,sphere"]);
+    let out = shadelab(&args);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert!(text(&out.stderr).contains("stanford-bunny.obj"));
 }
 
 #[test]

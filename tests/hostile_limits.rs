@@ -325,10 +325,10 @@ property list uchar int vertex_indices\nend_header\n"
     binary_ply.extend(f32_bytes(&[
         0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0,
     ]));
-    for face in [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]] {
+    for face in [[0i32, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]] {
         binary_ply.push(3);
         for i in face {
-            binary_ply.extend((i as i32).to_le_bytes());
+            binary_ply.extend(i.to_le_bytes());
         }
     }
     let mut images = Vec::new();

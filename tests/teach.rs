@@ -395,7 +395,7 @@ fn palette_and_fixed_point_flags_and_scene_keys() {
             &["render", "--fixed-point", "40", "-o", "x.png"],
         ),
         2,
-        "render.fixed_point_bits",
+        "--fixed-point <BITS>': must be a whole number in 1..=30, got \"40\"",
     );
     fails_with(
         &run(

@@ -64,15 +64,13 @@ fn escape_capped(text: &str, max_chars: usize, lines: bool) -> String {
     };
     let last = pieces.len() - 1;
     for (k, piece) in pieces.drain(..).enumerate() {
-        let mut kept = 0;
-        for (at, c) in piece.char_indices() {
+        for (kept, (at, c)) in piece.char_indices().enumerate() {
             if kept == max_chars {
                 let more = piece[at..].chars().count();
                 let plural = if more == 1 { "" } else { "s" };
                 out.push_str(&format!("… ({more} more character{plural})"));
                 break;
             }
-            kept += 1;
             match c {
                 '\n' => out.push_str("\\n"),
                 '\r' => out.push_str("\\r"),
