@@ -9,12 +9,15 @@
 //! same [`SceneFile`] functions that `shadelab render` uses.
 
 use serde::Serialize;
-use shadelab_core::{Image, Mesh, RenderOptions, RenderStats, Renderer, Rgb8, Scene};
+use shadelab_core::{
+    CornerNormals, Image, Mesh, RenderOptions, RenderStats, Renderer, Rgb8, Scene,
+};
 use shadelab_io::{parse_mesh, ModelSection, SceneError, SceneFile};
 
-/// Largest file the viewer reads, in bytes (128 MiB). Each panel's worker
-/// keeps its own copy of the mesh in a 32-bit address space; the command
-/// line reads files up to [`shadelab_io::MAX_MESH_BYTES`].
+/// Largest file the viewer reads, in bytes (128 MiB). The file is parsed
+/// once, but each panel's worker keeps its own copy of the mesh in a 32-bit
+/// address space; the command line reads files up to
+/// [`shadelab_io::MAX_MESH_BYTES`].
 pub const MAX_FILE_BYTES: usize = 128 << 20;
 
 /// Why a request failed: the text shown to the user.
@@ -126,6 +129,22 @@ fn serialize_stats<S: serde::Serializer>(s: &RenderStats, out: S) -> Result<S::O
     .serialize(out)
 }
 
+/// How often the engine did its expensive, rare work: what the page's tests
+/// read to check that a file is parsed once and a frame prepares nothing.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct EngineCounts {
+    /// Files parsed from their bytes ([`Engine::load_file`]).
+    pub files_parsed: u64,
+    /// Meshes taken ready-made from another engine ([`Engine::adopt_file`]).
+    pub files_adopted: u64,
+    /// Models prepared: the mesh built or copied, its normals computed.
+    pub models_prepared: u64,
+    /// Scene texts read (a frame whose text is the last one's reads none).
+    pub scenes_read: u64,
+    /// Frames drawn.
+    pub frames: u64,
+}
+
 /// What decides the prepared mesh and normals.
 #[derive(Debug, Clone, PartialEq)]
 struct ModelKey {
@@ -139,6 +158,10 @@ struct ModelKey {
 struct UserFile {
     name: String,
     mesh: Mesh,
+    /// The file's normals exactly as the parsing engine had them, when the
+    /// mesh's differ by the rounding of normalising them again (an adopted
+    /// mesh; see `shared_mesh`).
+    exact_normals: Option<CornerNormals>,
 }
 
 /// Renders panels from scene text, keeping the prepared model between frames
@@ -162,6 +185,7 @@ pub struct Engine {
     /// last instrument request.
     pub(crate) errors: Option<crate::instruments::KeptErrors>,
     pub(crate) images: Vec<Vec<u8>>,
+    counts: EngineCounts,
 }
 
 /// A scene ready to draw, and what it was made from.
@@ -217,12 +241,40 @@ impl Engine {
                 MAX_FILE_BYTES >> 20
             )));
         }
-        if shadelab_core::builtin_model_info(name).is_some() {
-            return Err(EngineError(format!(
-                "{name}: a file may not have the name of a built-in model"
-            )));
-        }
+        check_file_name(name)?;
+        self.counts.files_parsed += 1;
         let mesh = parse_mesh(bytes, name).map_err(|e| EngineError(e.to_string()))?;
+        Ok(self.keep_file(name, mesh, None))
+    }
+
+    /// Takes the mesh another engine parsed, as [`Engine::shared_file`] gave
+    /// it, as the file scenes can name: the panels parse the user's file
+    /// once. On error the previous file stays.
+    ///
+    /// # Errors
+    /// When `name` is a built-in model's, or the bytes are not a mesh
+    /// [`Engine::shared_file`] wrote.
+    pub fn adopt_file(&mut self, name: &str, bytes: &[u8]) -> Result<FileSummary, EngineError> {
+        check_file_name(name)?;
+        let (mesh, exact_normals) = crate::shared_mesh::decode(bytes)?;
+        self.counts.files_adopted += 1;
+        Ok(self.keep_file(name, mesh, exact_normals))
+    }
+
+    /// The loaded file's mesh as bytes for [`Engine::adopt_file`] (None
+    /// before a file is loaded).
+    pub fn shared_file(&self) -> Option<Vec<u8>> {
+        self.file
+            .as_ref()
+            .map(|f| crate::shared_mesh::encode(&f.mesh))
+    }
+
+    fn keep_file(
+        &mut self,
+        name: &str,
+        mesh: Mesh,
+        exact_normals: Option<CornerNormals>,
+    ) -> FileSummary {
         let summary = FileSummary {
             name: name.to_owned(),
             vertices: mesh.positions().len(),
@@ -233,9 +285,15 @@ impl Engine {
         self.file = Some(UserFile {
             name: name.to_owned(),
             mesh,
+            exact_normals,
         });
         self.file_generation += 1;
-        Ok(summary)
+        summary
+    }
+
+    /// How often the engine parsed, prepared and drew.
+    pub fn counts(&self) -> EngineCounts {
+        self.counts
     }
 
     /// Renders the scene `toml` (a scene file's text) into the engine's
@@ -255,6 +313,7 @@ impl Engine {
             .render_into(scene, &options, image)
             .map_err(|e| EngineError(e.to_string()))?;
         rgba_of(image, &mut self.rgba);
+        self.counts.frames += 1;
         self.options = Some(options);
         self.frame_toml.clear();
         self.frame_toml.push_str(toml);
@@ -293,6 +352,7 @@ impl Engine {
                 options: p.options,
             });
         }
+        self.counts.scenes_read += 1;
         let file = SceneFile::parse(toml, "scene")?;
         let options = file.render_options()?;
         let key = ModelKey {
@@ -302,7 +362,10 @@ impl Engine {
         };
         let mut scene = match self.prepared.take() {
             Some(p) if p.key == key => p.scene,
-            _ => self.prepare(&file, &options)?,
+            _ => {
+                self.counts.models_prepared += 1;
+                self.prepare(&file, &options)?
+            }
         };
         let result = file.update_scene(&mut scene, &options);
         // Keep the model even when the rest of the scene is invalid; such a
@@ -359,7 +422,14 @@ impl Engine {
                 ),
             }),
         })?;
-        let (mesh, normals) = file.prepare_model(mesh, default_crease)?;
+        let (mesh, mut normals) = file.prepare_model(mesh, default_crease)?;
+        // The scene took the file's normals (they are its normals, index for
+        // index): draw with them as the parsing engine had them.
+        if let Some(exact) = user_file.as_ref().and_then(|f| f.exact_normals.as_ref()) {
+            if mesh.file_normals() == Some(&normals) {
+                normals = exact.clone();
+            }
+        }
         Ok(file.build_scene(mesh, normals, options)?)
     }
 
@@ -381,12 +451,23 @@ impl Engine {
     }
 }
 
-/// Writes `image` as RGBA with alpha 255 into `out`.
+/// A user's file may not take a built-in model's name (a scene names either).
+fn check_file_name(name: &str) -> Result<(), EngineError> {
+    if shadelab_core::builtin_model_info(name).is_some() {
+        return Err(EngineError(format!(
+            "{name}: a file may not have the name of a built-in model"
+        )));
+    }
+    Ok(())
+}
+
+/// Writes `image` as RGBA with alpha 255 into `out`, reusing its memory.
 pub(crate) fn rgba_of(image: &Image, out: &mut Vec<u8>) {
-    out.clear();
-    out.reserve(image.pixels().len() * 4);
-    for p in image.pixels() {
+    // Sized once, then written in place: a loop of fixed-size copies that the
+    // compiler turns into shuffles (no length check per pixel).
+    out.resize(image.pixels().len() * 4, 0);
+    for (o, p) in out.chunks_exact_mut(4).zip(image.pixels()) {
         let [r, g, b] = p.0;
-        out.extend_from_slice(&[r, g, b, 255]);
+        o.copy_from_slice(&[r, g, b, 255]);
     }
 }
