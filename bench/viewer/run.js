@@ -133,6 +133,7 @@ function measureInPage({ steps, warmup }) {
   const rest = () => new Promise((resolve) => setTimeout(resolve, 250));
   return (async () => {
     const times = [];
+    const split = [];
     const frameCounts = () => window.shadelab.panels.map((p) => p.times.length);
     let counts = null;
     for (let k = 0; k < warmup + steps; k++) {
@@ -149,14 +150,33 @@ function measureInPage({ steps, warmup }) {
         if (performance.now() - start > 10000) throw new Error('the panels did not change within 10 s');
         await yieldTask();
       }
-      if (k >= warmup) times.push(performance.now() - start);
+      const seen = performance.now();
+      if (k >= warmup) {
+        times.push(seen - start);
+        // Where the last panel's time went, when the page records it (panels.js: `timings`).
+        const last = window.shadelab.panels.map((p) => p.timings?.at(-1)).filter(Boolean)
+          .sort((a, b) => a.painted - b.painted).at(-1);
+        if (last) {
+          const origin = performance.timeOrigin;
+          const engine = window.shadelab.panels.find((p) => p.timings.at(-1) === last).times.at(-1);
+          split.push({
+            before: last.sent - (origin + start),
+            in: last.received - last.sent,
+            engine,
+            worker: last.posted - last.received - engine,
+            out: last.arrived - last.posted,
+            paint: last.painted - last.arrived,
+            poll: origin + seen - last.painted,
+          });
+        }
+      }
     }
     // The engine's own time per method for the timed steps, as each worker measured it.
     const render = {};
     window.shadelab.panels.forEach((p, i) => {
       render[p.method] = p.times.slice(counts[i]);
     });
-    return { times, render };
+    return { times, render, split };
   })();
 }
 
@@ -186,7 +206,7 @@ async function main() {
   const results = [];
   try {
     for (const model of args.models) {
-      const rows = args.bins.map((bin) => ({ bin: bin.label, model, times: [], render: { flat: [], gouraud: [], phong: [] }, load: [] }));
+      const rows = args.bins.map((bin) => ({ bin: bin.label, model, times: [], render: { flat: [], gouraud: [], phong: [] }, split: [], load: [] }));
       for (let round = 0; round < args.rounds; round++) {
         for (let b = 0; b < args.bins.length; b++) {
           // Alternate the order each round as well.
@@ -199,6 +219,7 @@ async function main() {
           const r = await page.evaluate(measureInPage, { steps: args.steps, warmup: args.warmup });
           row.load.push(os.loadavg()[0]);
           row.times.push(...r.times);
+          row.split.push(...r.split);
           for (const m of METHODS) row.render[m].push(...r.render[m]);
           await page.close();
           process.stderr.write(`${model} ${row.bin} round ${round + 1}: median ${fmt(median(r.times))} ms\n`);
@@ -220,6 +241,15 @@ async function main() {
   for (const r of results) {
     const render = METHODS.map((m) => (r.render[m].length ? fmt(median(r.render[m])) : '–'));
     console.log(`| ${r.model} | ${r.bin}${r.isolated ? ' (isolated)' : ''} | ${fmt(median(r.times))} | ${fmt(percentile(r.times, 0.9))} | ${render.join(' | ')} |`);
+  }
+  const parts = ['before', 'in', 'engine', 'worker', 'out', 'paint', 'poll'];
+  const split = results.filter((r) => r.split.length);
+  if (split.length) {
+    console.log('\nwhere the last panel\'s time goes (ms, medians over the steps): before = keydown to the request posted; in = to the worker;');
+    console.log('engine = the WebAssembly call; worker = the rest in the worker (scene text in, pixels out); out = back to the page; paint = putImageData; poll = until the page\'s poll saw it\n');
+    console.log(`| model | build | ${parts.join(' | ')} |`);
+    console.log(`|---|---|${parts.map(() => '---:').join('|')}|`);
+    for (const r of split) console.log(`| ${r.model} | ${r.bin} | ${parts.map((k) => fmt(median(r.split.map((x) => x[k])))).join(' | ')} |`);
   }
   if (args.json) fs.writeFileSync(args.json, JSON.stringify({ cpu, browser, args, results }, null, 2));
 }

@@ -26,7 +26,16 @@ export class Marks {
     this.preview = null;
     this.lights = [];
     this.circle = false;
-    new ResizeObserver(() => this.draw()).observe(canvas);
+    /**
+     * The canvas's width on the screen, CSS pixels, as the ResizeObserver
+     * last saw it: reading `clientWidth` in `draw` would force a layout of
+     * the page on every frame.
+     */
+    this.shown = null;
+    new ResizeObserver(() => {
+      this.shown = canvas.clientWidth;
+      this.draw();
+    }).observe(canvas);
   }
 
   /** Sets what to mark (undefined leaves a mark as it is) and draws. */
@@ -42,7 +51,7 @@ export class Marks {
 
   draw() {
     const { width: w, height: h } = this.canvas;
-    const shown = this.canvas.clientWidth;
+    const shown = this.shown ?? this.canvas.clientWidth;
     this.svg.replaceChildren();
     if (!shown) return;
     this.svg.setAttribute('viewBox', `0 0 ${w} ${h}`);
