@@ -9,6 +9,7 @@
 // the panels scenes of its own for a while.
 import { t, lab, plural, translateDocument, setLanguage, negotiate, language, LANGUAGE_NAMES } from './i18n.js';
 import { Panel, ImagePanel, paint } from './panels.js';
+import { beforeNextPaint, holdPaintWorkWhile } from './dom.js';
 import { buildForm, lightSwatch } from './form.js';
 import { Side } from './side.js';
 import { attachInteraction } from './interaction.js';
@@ -179,8 +180,13 @@ function changed() {
   if (state.pixel && state.pixel.some((v) => v >= state.size)) state.pixel = null;
   if (state.profile?.row !== undefined && state.profile.row >= state.size) state.profile = { row: state.size - 1 };
   if (activeLight >= state.lights.length) activeLight = Math.max(0, state.lights.length - 1);
-  // The workers start drawing first; the controls catch up while they do.
+  // The workers start drawing at once; the controls catch up before the
+  // paint that shows the new frames (dom.js: beforeNextPaint).
   render();
+  beforeNextPaint(refreshControls);
+}
+
+function refreshControls() {
   form.refresh();
   side.refresh();
   present.refresh();
@@ -206,7 +212,7 @@ function panelFrame(panel, frame) {
     if (frame.exact) exactPanel.show(frame.exact);
     if (frame.bar) errorBar = frame.bar;
   }
-  markLights();
+  beforeNextPaint(markLights);
   if (panels.every((p) => p.last?.generation === frame.generation)) framesComplete();
 }
 
@@ -509,6 +515,7 @@ async function start() {
     return panel;
   });
   exactPanel = new ImagePanel('exact', figures.find((f) => f.dataset.method === 'exact'));
+  holdPaintWorkWhile(() => panels.some((p) => p.busy));
   try {
     const answers = await Promise.all(panels.map((p) => p.ready));
     models = answers[0].models;

@@ -5,6 +5,8 @@
 // (pixel (x, y) covers x..x+1, y..y+1), so that a mark sits on the pixel it
 // names at any display size; strokes and labels keep their size on the screen.
 
+import { beforeNextPaint } from './dom.js';
+
 const SVG = 'http://www.w3.org/2000/svg';
 
 function node(tag, attrs, text) {
@@ -38,7 +40,7 @@ export class Marks {
     }).observe(canvas);
   }
 
-  /** Sets what to mark (undefined leaves a mark as it is) and draws. */
+  /** Sets what to mark (undefined leaves a mark as it is); draws before the next paint. */
   set({ pixel, profile, inspection, preview, lights, circle } = {}) {
     if (lights !== undefined) this.lights = lights;
     if (circle !== undefined) this.circle = circle;
@@ -46,10 +48,10 @@ export class Marks {
     if (profile !== undefined) this.profile = profile;
     if (inspection !== undefined) this.inspection = inspection;
     if (preview !== undefined) this.preview = preview;
-    this.draw();
+    beforeNextPaint(this.draw);
   }
 
-  draw() {
+  draw = () => {
     const { width: w, height: h } = this.canvas;
     const shown = this.shown ?? this.canvas.clientWidth;
     this.svg.replaceChildren();
@@ -116,5 +118,5 @@ export class Marks {
         for (const [ax, ay, bx, by] of ticks) add('line', { x1: ax, y1: ay, x2: bx, y2: by, class: cls });
       }
     }
-  }
+  };
 }

@@ -4,7 +4,7 @@
 // never queues up stale frames. Instruments ask the same worker with `ask`,
 // between frames.
 import { t, plural, formatCount, formatNumber } from './i18n.js';
-import { el } from './dom.js';
+import { el, beforeNextPaint, paintPending } from './dom.js';
 import { Marks } from './marks.js';
 
 /** How many recent frame times each panel keeps (for the page and its tests). */
@@ -123,9 +123,10 @@ export class Panel {
 
   /** Resolves once no frame is being drawn or waiting. */
   idle() {
-    if (!this.busy && this.pending === null) return Promise.resolve();
+    const still = () => !this.busy && this.pending === null && !paintPending();
+    if (still()) return Promise.resolve();
     return new Promise((resolve) => {
-      const check = () => (!this.busy && this.pending === null ? resolve() : setTimeout(check, 5));
+      const check = () => (still() ? resolve() : setTimeout(check, 5));
       check();
     });
   }
@@ -173,7 +174,7 @@ export class Panel {
     frame.at.painted = performance.timeOrigin + performance.now();
     // The canvas holds its own copy now: the buffer can carry the next frame.
     this.spare = frame.pixels.buffer;
-    this.marks.draw();
+    beforeNextPaint(this.decorate);
     this.frames += 1;
     this.times.push(frame.ms);
     this.timings.push(frame.at);
@@ -181,8 +182,13 @@ export class Panel {
     if (this.timings.length > HISTORY) this.timings.shift();
     const { pixels, exact, bar, ...kept } = frame;
     this.last = kept;
-    this.relabel();
   }
+
+  /** The marks and the caption of the last frame, drawn before the paint that shows it. */
+  decorate = () => {
+    this.marks.draw();
+    this.relabel();
+  };
 
   /** The caption's time: the median render time of the last frames, and how many. */
   captionTime() {
