@@ -308,7 +308,7 @@ test('a file is parsed once: one panel parses it, the others take its mesh, and 
     }
     assert.ok(worst <= 1, `${m}: differs from shadelab render by up to ${worst}`);
   }
-  // Orbiting reads the new scene and draws; it neither parses nor prepares the model again.
+  // Orbiting draws; it neither parses nor prepares the model, nor reads the scene text again.
   const still = await page.evaluate(() => window.shadelab.counts());
   await page.locator('.panel[data-method="phong"] canvas').focus();
   for (let k = 0; k < 3; k++) {
@@ -320,6 +320,8 @@ test('a file is parsed once: one panel parses it, the others take its mesh, and 
     assert.equal(orbited[m].files_parsed + orbited[m].files_adopted, still[m].files_parsed + still[m].files_adopted, m);
     assert.equal(orbited[m].models_prepared, still[m].models_prepared, `${m}: the model was prepared again`);
     assert.equal(orbited[m].frames - still[m].frames, 3, `${m}: one frame per key`);
+    assert.equal(orbited[m].camera_turns - still[m].camera_turns, 3, `${m}: the camera turned`);
+    assert.equal(orbited[m].scenes_read, still[m].scenes_read, `${m}: the scene text was read again`);
   }
   fs.rmSync(dir, { recursive: true, force: true });
   assert.deepEqual(problems, []);

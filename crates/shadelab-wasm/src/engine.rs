@@ -5,8 +5,12 @@
 //! the `[model]` section (with whether a `[camera]` is given, which decides
 //! whether the mesh is normalised) determines the mesh and its normals, so
 //! those are prepared again only when that part changes; the camera, lights,
-//! material and options are read from the text on every frame through the
-//! same [`SceneFile`] functions that `shadelab render` uses.
+//! material and options are read from the text through the same
+//! [`SceneFile`] functions that `shadelab render` uses. A text that differs
+//! from the last only in the camera's yaw, pitch and zoom (a drag, an arrow
+//! key) is not read again as a whole: those values are set on the scene
+//! file kept from it (`camera_patch`), so a turning frame reads no TOML,
+//! builds no normals and allocates nothing.
 
 use serde::Serialize;
 use shadelab_core::{
@@ -139,8 +143,11 @@ pub struct EngineCounts {
     pub files_adopted: u64,
     /// Models prepared: the mesh built or copied, its normals computed.
     pub models_prepared: u64,
-    /// Scene texts read (a frame whose text is the last one's reads none).
+    /// Scene texts read as a whole (a frame whose text is the last one's
+    /// reads none; one that only turns the camera counts in `camera_turns`).
     pub scenes_read: u64,
+    /// Scene texts taken as the last one with the camera turned, unread.
+    pub camera_turns: u64,
     /// Frames drawn.
     pub frames: u64,
 }
@@ -352,6 +359,13 @@ impl Engine {
                 options: p.options,
             });
         }
+        if self.turn_camera(toml) {
+            let p = self.prepared.as_ref().expect("turn_camera keeps it");
+            return Ok(Loaded {
+                file: &p.file,
+                options: p.options,
+            });
+        }
         self.counts.scenes_read += 1;
         let file = SceneFile::parse(toml, "scene")?;
         let options = file.render_options()?;
@@ -387,6 +401,43 @@ impl Engine {
             file: &p.file,
             options: p.options,
         })
+    }
+
+    /// Takes `toml` without reading it as a whole when it differs from the
+    /// last scene only in the camera's `yaw`, `pitch` and `zoom`
+    /// (`camera_patch`): sets those on the kept scene file and resolves the
+    /// camera again. False, changing nothing, when the text is more than
+    /// that or the values are refused (the whole reading then says why).
+    fn turn_camera(&mut self, toml: &str) -> bool {
+        let Some(p) = self.prepared.as_mut() else {
+            return false;
+        };
+        if p.toml.is_empty() || p.key.file_generation != self.file_generation {
+            return false;
+        }
+        let Some([yaw, pitch, zoom]) = crate::camera_patch::camera_change(&p.toml, toml) else {
+            return false;
+        };
+        let mut file = p.file.clone();
+        let render = &mut file.render;
+        for (key, value) in [
+            (&mut render.yaw, yaw),
+            (&mut render.pitch, pitch),
+            (&mut render.zoom, zoom),
+        ] {
+            if value.is_some() {
+                *key = value;
+            }
+        }
+        // On error the scene is left as it was.
+        if file.update_scene(&mut p.scene, &p.options).is_err() {
+            return false;
+        }
+        p.file = file;
+        p.toml.clear();
+        p.toml.push_str(toml);
+        self.counts.camera_turns += 1;
+        true
     }
 
     /// The scene [`Engine::load_scene`] last read.

@@ -37,6 +37,7 @@
 #![warn(missing_docs)]
 
 pub mod abi;
+mod camera_patch;
 mod engine;
 mod instruments;
 mod shared_mesh;

@@ -166,12 +166,19 @@ fn a_camera_change_prepares_nothing_again() {
         let extra = format!("yaw = {yaw}\nzoom = 1.5\n[material]\nshininess = 12.0\n");
         image(&mut engine, &scene("octahedron.obj", "phong", &extra));
     }
+    // The first of them changed the material (read as a whole); the other
+    // two only turned the camera (not read again).
     let counts = engine.counts();
     assert_eq!(
-        (counts.models_prepared, counts.frames, counts.scenes_read),
-        (1, 4, 4)
+        (
+            counts.models_prepared,
+            counts.frames,
+            counts.scenes_read,
+            counts.camera_turns
+        ),
+        (1, 4, 2, 2)
     );
-    // The same text again is not even read again.
+    // The same text again is not even looked at.
     image(
         &mut engine,
         &scene(
@@ -180,13 +187,56 @@ fn a_camera_change_prepares_nothing_again() {
             "yaw = 15\nzoom = 1.5\n[material]\nshininess = 12.0\n",
         ),
     );
-    assert_eq!(engine.counts().scenes_read, 4);
+    assert_eq!(
+        (engine.counts().scenes_read, engine.counts().camera_turns),
+        (2, 2)
+    );
     // Other normals are another model.
     let toml =
         scene("octahedron.obj", "phong", "").replace("[render]", "normals = \"area\"\n[render]");
     image(&mut engine, &toml);
     assert_eq!(engine.counts().models_prepared, 2);
     assert_eq!(engine.counts().files_parsed, 1);
+}
+
+#[test]
+fn a_turned_camera_draws_what_a_scene_read_anew_draws() {
+    let texts: Vec<String> = [
+        "yaw = 0.0\npitch = 0.0\nzoom = 1.0\n",
+        "yaw = 12.5\npitch = 0.0\nzoom = 1.0\n",
+        "yaw = 12.5\npitch = -30.0\nzoom = 2.25\n",
+        "yaw = 400\npitch = 89.0\nzoom = 8.0\n",
+        // Refused: the error names the key, and the last good frame stays.
+        "yaw = 400\npitch = 89.0\nzoom = 0.001\n",
+        "yaw = 1e1\npitch = 89.0\nzoom = 0.25\n",
+    ]
+    .iter()
+    .map(|camera| scene("teapot", "gouraud", camera))
+    .collect();
+    let mut turning = Engine::new();
+    for (k, toml) in texts.iter().enumerate() {
+        let mut fresh = Engine::new();
+        match fresh.render(toml) {
+            Ok(_) => {
+                assert!(
+                    image(&mut turning, toml) == *fresh.image().unwrap(),
+                    "{toml}"
+                );
+            }
+            Err(e) => {
+                let before = turning.image().unwrap().clone();
+                assert_eq!(turning.render(toml).unwrap_err(), e, "{toml}");
+                assert!(e.0.contains("render.zoom"), "{e}");
+                assert!(*turning.image().unwrap() == before);
+            }
+        }
+        assert_eq!(turning.counts().models_prepared, 1, "frame {k}");
+    }
+    // Frames 1, 2 and 3 turned the camera; frame 0 was read, so was the
+    // refused one (to say why), and so was the next, which had no good text
+    // to be compared with.
+    let counts = turning.counts();
+    assert_eq!((counts.camera_turns, counts.scenes_read), (3, 3));
 }
 
 #[test]
