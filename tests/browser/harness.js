@@ -44,6 +44,7 @@ export function useViewer() {
       viewport: { width: 1600, height: 1000 },
       args: LAUNCH_ARGS,
     });
+    await withTestHooks(context);
   });
 
   after(async () => {
@@ -53,15 +54,27 @@ export function useViewer() {
   });
 }
 
+/**
+ * Gives the pages of `ctx` the viewer's test hooks (`window.shadelab`),
+ * which a page has only when this flag is set before its scripts run.
+ */
+export async function withTestHooks(ctx) {
+  await ctx.addInitScript(() => {
+    globalThis.SHADELAB_TEST_HOOKS = true;
+  });
+  return ctx;
+}
+
 const LAUNCH_ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
   '--disable-background-networking', '--disable-component-update', '--disable-sync'];
 
 /**
  * A second browser context with its own fresh profile, for options the
  * shared one cannot change (a device pixel ratio): `options` are
- * playwright's (viewport, deviceScaleFactor). Close it with `.close()`.
+ * playwright's (viewport, deviceScaleFactor); `hooks: false` leaves its
+ * pages without the test hooks, as a user's. Close it with `.close()`.
  */
-export async function otherContext(options) {
+export async function otherContext(options, { hooks = true } = {}) {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'shadelab-chromium-'));
   const other = await chromium.launchPersistentContext(dir, {
     executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
@@ -70,6 +83,7 @@ export async function otherContext(options) {
     args: LAUNCH_ARGS,
     ...options,
   });
+  if (hooks) await withTestHooks(other);
   const close = other.close.bind(other);
   other.close = async () => {
     await close();

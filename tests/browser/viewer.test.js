@@ -12,7 +12,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import {
-  useViewer, context, BIN, ARTIFACTS, BUNNY, METHODS,
+  useViewer, context, otherContext, baseUrl, BIN, ARTIFACTS, BUNNY, METHODS,
   openViewer, settle, update, digests, statistics, panelPixels, decodePng, median, percentile,
 } from './harness.js';
 
@@ -251,6 +251,105 @@ test('a bad file shows a clear error and the previous model stays', async () => 
   assert.deepEqual(await digests(page), good);
   assert.deepEqual(problems, []);
   await page.close();
+});
+
+/** A UV sphere as OBJ text, with a normal of its own length at every vertex and two smoothing groups. */
+function sphereObj(slices = 20, stacks = 12) {
+  const lines = [];
+  for (let j = 0; j <= stacks; j++) {
+    for (let i = 0; i < slices; i++) {
+      const t = (Math.PI * j) / stacks;
+      const p = (2 * Math.PI * i) / slices;
+      const v = [Math.sin(t) * Math.cos(p), Math.cos(t), Math.sin(t) * Math.sin(p)];
+      lines.push(`v ${v.map((x) => x.toFixed(6)).join(' ')}`);
+      // Normals of all sorts of lengths: the renderer normalises them.
+      lines.push(`vn ${v.map((x) => (x * (0.3 + ((i * 7 + j) % 5))).toFixed(6)).join(' ')}`);
+    }
+  }
+  const at = (j, i) => j * slices + (i % slices) + 1;
+  for (let j = 0; j < stacks; j++) {
+    if (j === stacks / 2) lines.push('s 2');
+    else if (j === 0) lines.push('s 1');
+    for (let i = 0; i < slices; i++) {
+      const q = [at(j, i), at(j + 1, i), at(j + 1, i + 1), at(j, i + 1)];
+      lines.push(`f ${q.map((k) => `${k}//${k}`).join(' ')}`);
+    }
+  }
+  return `${lines.join('\n')}\n`;
+}
+
+test('a file is parsed once: one panel parses it, the others take its mesh, and all three draw what `shadelab render` draws', async () => {
+  const { page, problems } = await openViewer();
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'shadelab-once-'));
+  const obj = path.join(dir, 'ball.obj');
+  fs.writeFileSync(obj, sphereObj());
+  const before = await page.evaluate(() => window.shadelab.counts());
+  await page.locator('input[type="file"]').setInputFiles(obj);
+  await page.waitForFunction(() => window.shadelab.state.model === 'ball.obj');
+  await settle(page);
+  const loaded = await page.evaluate(() => window.shadelab.counts());
+  const added = (key) => Object.fromEntries(METHODS.map((m) => [m, loaded[m][key] - before[m][key]]));
+  assert.deepEqual(added('files_parsed'), { flat: 1, gouraud: 0, phong: 0 });
+  assert.deepEqual(added('files_adopted'), { flat: 0, gouraud: 1, phong: 1 });
+  // The file's normals are used (auto), and every panel is the command line's picture.
+  await update(page, 's.camera.yaw = 25; s.camera.pitch = 15');
+  for (const m of METHODS) {
+    const scene = path.join(dir, `${m}.toml`);
+    const png = path.join(dir, `${m}.png`);
+    fs.writeFileSync(scene, await page.evaluate((mm) => window.shadelab.sceneToml(mm), m));
+    assert.match(fs.readFileSync(scene, 'utf8'), /source = "ball\.obj"/);
+    execFileSync(BIN, ['render', scene, '-o', png], { stdio: 'pipe' });
+    const cli = Buffer.from((await decodePng(page, png)).rgba, 'base64');
+    const panel = Buffer.from(await panelPixels(page, m), 'base64');
+    assert.equal(panel.length, cli.length);
+    let worst = 0;
+    for (let i = 0; i < panel.length; i += 4) {
+      worst = Math.max(worst, Math.abs(panel[i] - cli[i]), Math.abs(panel[i + 1] - cli[i + 1]), Math.abs(panel[i + 2] - cli[i + 2]));
+    }
+    assert.ok(worst <= 1, `${m}: differs from shadelab render by up to ${worst}`);
+  }
+  // Orbiting draws; it neither parses nor prepares the model, nor reads the scene text again.
+  const still = await page.evaluate(() => window.shadelab.counts());
+  await page.locator('.panel[data-method="phong"] canvas').focus();
+  for (let k = 0; k < 3; k++) {
+    await page.keyboard.press('ArrowRight');
+    await settle(page);
+  }
+  const orbited = await page.evaluate(() => window.shadelab.counts());
+  for (const m of METHODS) {
+    assert.equal(orbited[m].files_parsed + orbited[m].files_adopted, still[m].files_parsed + still[m].files_adopted, m);
+    assert.equal(orbited[m].models_prepared, still[m].models_prepared, `${m}: the model was prepared again`);
+    assert.equal(orbited[m].frames - still[m].frames, 3, `${m}: one frame per key`);
+    assert.equal(orbited[m].camera_turns - still[m].camera_turns, 3, `${m}: the camera turned`);
+    assert.equal(orbited[m].scenes_read, still[m].scenes_read, `${m}: the scene text was read again`);
+  }
+  fs.rmSync(dir, { recursive: true, force: true });
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('the page exposes its test hooks only when the test asks for them', async () => {
+  const plain = await otherContext({ viewport: { width: 1366, height: 768 } }, { hooks: false });
+  const page = await plain.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  page.on('console', (m) => m.type() === 'error' && problems.push(m.text()));
+  await page.goto(baseUrl);
+  // Drawn: each panel's canvas has pixels other than the background.
+  await page.waitForFunction(() => [...document.querySelectorAll('.panel:not(.exact) canvas')].every((c) => {
+    const d = c.getContext('2d', { willReadFrequently: true }).getImageData(0, 0, c.width, c.height).data;
+    for (let i = 0; i < d.length; i += 4) if (d[i] !== d[0] || d[i + 1] !== d[1] || d[i + 2] !== d[2]) return true;
+    return false;
+  }), null, { timeout: 60000 });
+  assert.equal(await page.evaluate(() => typeof window.shadelab), 'undefined');
+  assert.equal(await page.evaluate(() => Object.keys(window).filter((k) => /shadelab/i.test(k)).length), 0);
+  // The keyboard works as ever without them.
+  const first = await page.evaluate(() => document.querySelector('.panel canvas').toDataURL());
+  await page.locator('.panel[data-method="flat"] canvas').focus();
+  await page.keyboard.press('ArrowLeft');
+  await page.waitForFunction((f) => document.querySelector('.panel canvas').toDataURL() !== f, first);
+  assert.deepEqual(problems, []);
+  await plain.close();
 });
 
 test('a scene the renderer refuses shows its message and the last pictures stay', async () => {

@@ -8,6 +8,15 @@ import { el } from './dom.js';
 let uid = 0;
 const nextId = (name) => `c-${name}-${++uid}`;
 
+/**
+ * Sets `target[prop]` only when it differs: refresh() runs after every
+ * change (each orbit step), and writing a control's value, bounds or text
+ * even unchanged makes the browser lay the page out again.
+ */
+function put(target, prop, value) {
+  if (target[prop] !== value) target[prop] = value;
+}
+
 const toHex = (c) => `#${c.map((v) => Math.round(v).toString(16).padStart(2, '0')).join('')}`;
 const fromHex = (h) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16));
 
@@ -51,9 +60,9 @@ export class Controls {
       if (!same) {
         select.replaceChildren(...wanted.map(([v, l, disabled]) => el('option', { value: v, text: l, disabled: !!disabled })));
       } else {
-        wanted.forEach(([, , disabled], i) => (select.options[i].disabled = !!disabled));
+        wanted.forEach(([, , disabled], i) => put(select.options[i], 'disabled', !!disabled));
       }
-      select.value = get();
+      put(select, 'value', get());
     };
     select.addEventListener('change', () => {
       set(select.value);
@@ -91,18 +100,18 @@ export class Controls {
     const sync = (except) => {
       const [lo, hi] = bounds();
       const [alo, ahi] = accepted();
-      range.min = String(lo);
-      range.max = String(hi);
-      number.min = String(alo);
-      number.max = String(ahi);
+      put(range, 'min', String(lo));
+      put(range, 'max', String(hi));
+      put(number, 'min', String(alo));
+      put(number, 'max', String(ahi));
       for (const input of [range, number]) {
-        if (input !== except) input.value = String(get());
+        if (input !== except) put(input, 'value', String(get()));
       }
-      if (hintEl) hintEl.textContent = hint();
+      if (hintEl) put(hintEl, 'textContent', hint());
       if (visible) {
         const show = visible();
-        row.hidden = !show;
-        if (hintEl) hintEl.hidden = !show;
+        put(row, 'hidden', !show);
+        if (hintEl) put(hintEl, 'hidden', !show);
       }
     };
     range.addEventListener('input', () => apply(range));
@@ -140,9 +149,9 @@ export class Controls {
     const sync = () => {
       const c = get();
       boxes.forEach((b, i) => {
-        if (document.activeElement !== b) b.value = String(c[i]);
+        if (document.activeElement !== b) put(b, 'value', String(c[i]));
       });
-      picker.value = toHex(c);
+      put(picker, 'value', toHex(c));
     };
     this.refreshers.push(sync);
     sync();
@@ -170,7 +179,7 @@ export class Controls {
     });
     const sync = () => boxes.forEach((b, i) => {
       const v = get()[i];
-      if (document.activeElement !== b) b.value = v === null ? '' : String(Number(v.toFixed(3)));
+      if (document.activeElement !== b) put(b, 'value', v === null ? '' : String(Number(v.toFixed(3))));
     });
     this.refreshers.push(sync);
     sync();
@@ -187,8 +196,8 @@ export class Controls {
       this.changed(name);
     });
     const sync = () => {
-      box.checked = get();
-      if (disabled) box.disabled = disabled();
+      put(box, 'checked', get());
+      if (disabled) put(box, 'disabled', disabled());
     };
     this.refreshers.push(sync);
     sync();
@@ -226,7 +235,7 @@ export class Controls {
   details(parent, { summary, text }) {
     const body = el('p', { class: 'explain' });
     const d = el('details', { class: 'explain' }, [el('summary', { text: summary }), body]);
-    const sync = () => (body.textContent = text());
+    const sync = () => put(body, 'textContent', text());
     this.refreshers.push(sync);
     sync();
     parent.append(d);
@@ -238,8 +247,8 @@ export class Controls {
     const p = el('p', { class: 'hint' });
     const sync = () => {
       const s = text();
-      p.textContent = s;
-      p.hidden = !s;
+      put(p, 'textContent', s);
+      put(p, 'hidden', !s);
     };
     this.refreshers.push(sync);
     sync();

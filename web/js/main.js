@@ -9,6 +9,7 @@
 // the panels scenes of its own for a while.
 import { t, lab, plural, translateDocument, setLanguage, negotiate, language, LANGUAGE_NAMES } from './i18n.js';
 import { Panel, ImagePanel, paint } from './panels.js';
+import { beforeNextPaint, holdPaintWorkWhile } from './dom.js';
 import { buildForm, lightSwatch } from './form.js';
 import { Side } from './side.js';
 import { attachInteraction } from './interaction.js';
@@ -179,11 +180,17 @@ function changed() {
   if (state.pixel && state.pixel.some((v) => v >= state.size)) state.pixel = null;
   if (state.profile?.row !== undefined && state.profile.row >= state.size) state.profile = { row: state.size - 1 };
   if (activeLight >= state.lights.length) activeLight = Math.max(0, state.lights.length - 1);
+  // The workers start drawing at once; the controls catch up before the
+  // paint that shows the new frames (dom.js: beforeNextPaint).
+  render();
+  beforeNextPaint(refreshControls);
+}
+
+function refreshControls() {
   form.refresh();
   side.refresh();
   present.refresh();
   side.tools.inspector.invalidate();
-  render();
 }
 
 let lastError = '';
@@ -205,7 +212,7 @@ function panelFrame(panel, frame) {
     if (frame.exact) exactPanel.show(frame.exact);
     if (frame.bar) errorBar = frame.bar;
   }
-  markLights();
+  beforeNextPaint(markLights);
   if (panels.every((p) => p.last?.generation === frame.generation)) framesComplete();
 }
 
@@ -305,15 +312,18 @@ async function openFile(file) {
     showMessage(t('error.kept', { message: t('error.read', { name: file.name, message: error.message }) }));
     return;
   }
-  let summaries;
+  // One panel parses the file; the others take the mesh it became.
+  let summary;
   try {
-    summaries = await Promise.all(panels.map((p) => p.loadFile(file.name, bytes)));
+    const parsed = await panels[0].loadFile(file.name, bytes);
+    summary = parsed.summary;
+    await Promise.all(panels.slice(1).map((p) => p.adoptFile(file.name, parsed.mesh)));
   } catch (error) {
     setStatus('');
     showMessage(t('error.kept', { message: t('error.file', { message: error.message }) }));
     return;
   }
-  userFile = summaries[0];
+  userFile = summary;
   clearMessage();
   setModel(userFile.name);
 }
@@ -505,6 +515,7 @@ async function start() {
     return panel;
   });
   exactPanel = new ImagePanel('exact', figures.find((f) => f.dataset.method === 'exact'));
+  holdPaintWorkWhile(() => panels.some((p) => p.busy));
   try {
     const answers = await Promise.all(panels.map((p) => p.ready));
     models = answers[0].models;
@@ -567,11 +578,15 @@ async function start() {
   });
   // `state` is replaced by applyLink only before the controls exist; from
   // here on it is the same object, changed in place.
-  exposeForTests();
+  if (globalThis.SHADELAB_TEST_HOOKS === true) exposeForTests();
   render();
 }
 
-/** A small handle for the browser tests and for the curious (devtools). */
+/**
+ * The browser tests' handle on the page, `window.shadelab`: only when the
+ * test sets `globalThis.SHADELAB_TEST_HOOKS = true` before the page's
+ * scripts run (Playwright's `addInitScript`); a plain page exposes nothing.
+ */
 function exposeForTests() {
   window.shadelab = {
     get state() { return state; },
@@ -585,6 +600,8 @@ function exposeForTests() {
       changed();
     },
     idle: () => Promise.all(panels.map((p) => p.idle())),
+    /** Per panel, how often its engine parsed a file, adopted a mesh, prepared a model, read a scene, drew. */
+    counts: async () => Object.fromEntries(await Promise.all(panels.map(async (p) => [p.method, (await p.ask({ type: 'counts' })).counts]))),
     /** Resolves once the panels are still and the open instrument has caught up. */
     async instrumentsIdle() {
       for (;;) {

@@ -5,6 +5,8 @@
 // (pixel (x, y) covers x..x+1, y..y+1), so that a mark sits on the pixel it
 // names at any display size; strokes and labels keep their size on the screen.
 
+import { beforeNextPaint } from './dom.js';
+
 const SVG = 'http://www.w3.org/2000/svg';
 
 function node(tag, attrs, text) {
@@ -26,10 +28,19 @@ export class Marks {
     this.preview = null;
     this.lights = [];
     this.circle = false;
-    new ResizeObserver(() => this.draw()).observe(canvas);
+    /**
+     * The canvas's width on the screen, CSS pixels, as the ResizeObserver
+     * last saw it: reading `clientWidth` in `draw` would force a layout of
+     * the page on every frame.
+     */
+    this.shown = null;
+    new ResizeObserver(() => {
+      this.shown = canvas.clientWidth;
+      this.draw();
+    }).observe(canvas);
   }
 
-  /** Sets what to mark (undefined leaves a mark as it is) and draws. */
+  /** Sets what to mark (undefined leaves a mark as it is); draws before the next paint. */
   set({ pixel, profile, inspection, preview, lights, circle } = {}) {
     if (lights !== undefined) this.lights = lights;
     if (circle !== undefined) this.circle = circle;
@@ -37,12 +48,12 @@ export class Marks {
     if (profile !== undefined) this.profile = profile;
     if (inspection !== undefined) this.inspection = inspection;
     if (preview !== undefined) this.preview = preview;
-    this.draw();
+    beforeNextPaint(this.draw);
   }
 
-  draw() {
+  draw = () => {
     const { width: w, height: h } = this.canvas;
-    const shown = this.canvas.clientWidth;
+    const shown = this.shown ?? this.canvas.clientWidth;
     this.svg.replaceChildren();
     if (!shown) return;
     this.svg.setAttribute('viewBox', `0 0 ${w} ${h}`);
@@ -107,5 +118,5 @@ export class Marks {
         for (const [ax, ay, bx, by] of ticks) add('line', { x1: ax, y1: ay, x2: bx, y2: by, class: cls });
       }
     }
-  }
+  };
 }

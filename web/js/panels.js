@@ -4,7 +4,7 @@
 // never queues up stale frames. Instruments ask the same worker with `ask`,
 // between frames.
 import { t, plural, formatCount, formatNumber } from './i18n.js';
-import { el } from './dom.js';
+import { el, beforeNextPaint, paintPending } from './dom.js';
 import { Marks } from './marks.js';
 
 /** How many recent frame times each panel keeps (for the page and its tests). */
@@ -61,7 +61,11 @@ export class Panel {
     this.waiting = new Map();
     this.busy = false;
     this.pending = null;
+    /** The pixels' buffer of the last frame painted, given back to the worker for the next. */
+    this.spare = null;
     this.times = [];
+    /** Each recent frame's `at` (see #draw), as `times`. */
+    this.timings = [];
     this.frames = 0;
     /** The last frame drawn: its request's generation, size, counts, error map. */
     this.last = null;
@@ -93,9 +97,18 @@ export class Panel {
     }
   }
 
-  /** Loads the user's file into this panel's engine; resolves to its summary. */
+  /**
+   * Parses the user's file in this panel's engine; resolves to {summary,
+   * mesh}: the mesh as bytes for the other panels' `adoptFile`.
+   */
   async loadFile(name, bytes) {
-    const answer = await this.ask({ type: 'load-file', name, bytes });
+    const answer = await this.ask({ type: 'load-file', name, bytes, share: true });
+    return { summary: answer.summary, mesh: answer.mesh };
+  }
+
+  /** Gives this panel's engine the mesh another panel parsed; resolves to its summary. */
+  async adoptFile(name, mesh) {
+    const answer = await this.ask({ type: 'adopt-file', name, mesh });
     return answer.summary;
   }
 
@@ -110,9 +123,10 @@ export class Panel {
 
   /** Resolves once no frame is being drawn or waiting. */
   idle() {
-    if (!this.busy && this.pending === null) return Promise.resolve();
+    const still = () => !this.busy && this.pending === null && !paintPending();
+    if (still()) return Promise.resolve();
     return new Promise((resolve) => {
-      const check = () => (!this.busy && this.pending === null ? resolve() : setTimeout(check, 5));
+      const check = () => (still() ? resolve() : setTimeout(check, 5));
       check();
     });
   }
@@ -124,7 +138,12 @@ export class Panel {
     this.figure.classList.add('busy');
     try {
       const { generation, gouraudSpecular, ...msg } = request;
-      const frame = await this.ask({ type: 'render', ...msg });
+      const spare = this.spare;
+      this.spare = null;
+      const sent = performance.timeOrigin + performance.now();
+      const frame = await this.ask({ type: 'render', ...msg, spare }, spare ? [spare] : []);
+      frame.at.sent = sent;
+      frame.at.arrived = performance.timeOrigin + performance.now();
       frame.generation = generation;
       frame.gouraudSpecular = gouraudSpecular;
       frame.overlays = msg.overlays;
@@ -150,14 +169,26 @@ export class Panel {
 
   #draw(frame) {
     paint(this.canvas, this.context, frame);
-    this.marks.draw();
+    // When the request left, reached the worker, came back and was painted
+    // (ms since the epoch): where a frame's latency goes (bench/viewer).
+    frame.at.painted = performance.timeOrigin + performance.now();
+    // The canvas holds its own copy now: the buffer can carry the next frame.
+    this.spare = frame.pixels.buffer;
+    beforeNextPaint(this.decorate);
     this.frames += 1;
     this.times.push(frame.ms);
+    this.timings.push(frame.at);
     if (this.times.length > HISTORY) this.times.shift();
+    if (this.timings.length > HISTORY) this.timings.shift();
     const { pixels, exact, bar, ...kept } = frame;
     this.last = kept;
-    this.relabel();
   }
+
+  /** The marks and the caption of the last frame, drawn before the paint that shows it. */
+  decorate = () => {
+    this.marks.draw();
+    this.relabel();
+  };
 
   /** The caption's time: the median render time of the last frames, and how many. */
   captionTime() {

@@ -36,12 +36,39 @@ export class Shadelab {
   }
 
   /**
+   * The loaded file's mesh as bytes (a Uint8Array of its own) for another
+   * engine's `adoptFile`: the file is parsed once, by one engine.
+   */
+  shareFile() {
+    this.#call(this.x.shadelab_share_file());
+    const start = this.x.shadelab_output();
+    return new Uint8Array(this.x.memory.buffer.slice(start, start + this.x.shadelab_output_len()));
+  }
+
+  /** Takes the mesh another engine's `shareFile` gave as file `name`; returns its summary. */
+  adoptFile(name, bytes) {
+    const nameBytes = encoder.encode(name);
+    this.#input(nameBytes.length + bytes.byteLength, (view) => {
+      view.set(nameBytes, 0);
+      view.set(new Uint8Array(bytes.buffer ?? bytes, bytes.byteOffset ?? 0, bytes.byteLength), nameBytes.length);
+    });
+    return this.#call(this.x.shadelab_adopt_file(nameBytes.length));
+  }
+
+  /** How often this engine parsed files, adopted meshes, prepared models, read scenes and drew frames. */
+  counts() {
+    return this.#call(this.x.shadelab_counts());
+  }
+
+  /**
    * Renders a scene given as TOML text. Returns {width, height, rasterizer,
    * stats, cost, view, pixels, ms}: `pixels` a Uint8ClampedArray copy of the
    * RGBA frame, `ms` the time the engine's call took (reading the scene and
    * drawing it), without copying the pixels out or anything before or after.
+   * `spare`, an ArrayBuffer of an earlier frame of this size, is reused for
+   * the pixels instead of a new one.
    */
-  render(sceneToml) {
+  render(sceneToml, spare = null) {
     const text = encoder.encode(sceneToml);
     this.#input(text.length, (view) => view.set(text));
     const start = performance.now();
@@ -49,14 +76,23 @@ export class Shadelab {
     const ms = performance.now() - start;
     const info = this.#call(status);
     info.ms = ms;
-    info.pixels = this.pixels();
+    info.pixels = this.pixels(spare);
     return info;
   }
 
-  /** A copy of the last frame's RGBA pixels (as drawn, overlays included). */
-  pixels() {
+  /**
+   * A copy of the last frame's RGBA pixels (as drawn, overlays included),
+   * in `spare` when it is an ArrayBuffer of their size.
+   */
+  pixels(spare = null) {
     const start = this.x.shadelab_pixels();
-    return new Uint8ClampedArray(this.x.memory.buffer.slice(start, start + this.x.shadelab_pixels_len()));
+    const length = this.x.shadelab_pixels_len();
+    if (spare && spare.byteLength === length) {
+      const out = new Uint8ClampedArray(spare);
+      out.set(new Uint8ClampedArray(this.x.memory.buffer, start, length));
+      return out;
+    }
+    return new Uint8ClampedArray(this.x.memory.buffer.slice(start, start + length));
   }
 
   /** Draws overlays ('wireframe,light', …) over the last frame; returns its pixels. */

@@ -3,10 +3,13 @@
 // per request, matched by `id`:
 //
 //   {type: 'init', module}               -> {type: 'ready', models}
-//   {type: 'load-file', id, name, bytes} -> {type: 'file-loaded', id, summary}
-//   {type: 'render', id, scene, overlays, errors}
+//   {type: 'load-file', id, name, bytes, share}
+//                                        -> {type: 'file-loaded', id, summary, mesh?}
+//   {type: 'adopt-file', id, name, mesh} -> {type: 'file-adopted', id, summary}
+//   {type: 'counts', id}                 -> {type: 'counts', id, counts}
+//   {type: 'render', id, scene, overlays, errors, spare?}
 //                                        -> {type: 'frame', id, width, height, rasterizer, stats, cost, view, pixels, ms,
-//                                            errors?, exact?, bar?}
+//                                            at: {received, posted}, errors?, exact?, bar?}
 //   {type: 'heat', id, scale, overlays}  -> {type: 'heat', id, scale, pixels}
 //   {type: 'inspect', id, scene, x, y, lang}  -> {type: 'inspection', id, inspection}
 //   {type: 'profile', id, scene, row | line}  -> {type: 'profile', id, profile}
@@ -18,20 +21,32 @@
 // A frame is the scene drawn, then, when asked, its overlays (`overlays`, a
 // comma-separated list) or its error map against the exact surface
 // (`errors: {scale, exact, bar}`: `pixels` is then the heat map, `exact` the
-// exact surface's image). `ms` is the time the engine took to render, measured
+// exact surface's image). `spare` is the buffer of a frame the page has painted,
+// given back to hold this one's pixels. `ms` is the time the engine took to render, measured
 // here around that call alone (not the overlays, the error map, the copy of
-// the pixels or their way to the page). A new request type is a new case below and a
+// the pixels or their way to the page); `at` says when (ms since the epoch) the request
+// arrived and the answer left. A new request type is a new case below and a
 // new export in crates/shadelab-wasm.
+//
+// The user's file is parsed by one panel's worker (`load-file` with `share`,
+// which answers with the mesh it became as bytes); the others take that mesh
+// (`adopt-file`), so a file is parsed once, however many panels draw it.
 import { Shadelab, ShadelabError } from './shadelab.js';
+
+/** Milliseconds since the epoch, comparable with the page's (`at` of a frame). */
+const now = () => performance.timeOrigin + performance.now();
 
 let module = null;
 let engine = null;
-/** The last file loaded, loaded again should the instance have to be replaced. */
+/**
+ * The user's file as this engine has it, {name, mesh}: the mesh as bytes,
+ * taken again (not parsed again) should the instance have to be replaced.
+ */
 let file = null;
 
 async function restart() {
   engine = await Shadelab.create(module);
-  if (file) engine.loadFile(file.name, file.bytes);
+  if (file) engine.adoptFile(file.name, file.mesh);
 }
 
 const handlers = {
@@ -43,14 +58,27 @@ const handlers = {
 
   'load-file'(msg) {
     const summary = engine.loadFile(msg.name, msg.bytes);
-    file = { name: msg.name, bytes: msg.bytes };
-    return { type: 'file-loaded', summary };
+    file = { name: msg.name, mesh: engine.shareFile() };
+    if (!msg.share) return { type: 'file-loaded', summary };
+    const mesh = file.mesh.slice();
+    return [{ type: 'file-loaded', summary, mesh }, [mesh.buffer]];
+  },
+
+  'adopt-file'(msg) {
+    const summary = engine.adoptFile(msg.name, msg.mesh);
+    file = { name: msg.name, mesh: msg.mesh };
+    return { type: 'file-adopted', summary };
+  },
+
+  counts() {
+    return { type: 'counts', counts: engine.counts() };
   },
 
   render(msg) {
-    const frame = engine.render(msg.scene);
+    const received = now();
+    const frame = engine.render(msg.scene, msg.spare);
     const { width, height, rasterizer, stats, cost, view, ms } = frame;
-    const reply = { type: 'frame', width, height, rasterizer, stats, cost, view, pixels: frame.pixels, ms };
+    const reply = { type: 'frame', width, height, rasterizer, stats, cost, view, pixels: frame.pixels, ms, at: { received } };
     if (msg.errors) {
       const answer = engine.errors({ ...msg.errors, overlays: msg.overlays ?? '' });
       const { heat, exact, bar } = answer.images;
@@ -59,6 +87,7 @@ const handlers = {
     } else if (msg.overlays) {
       reply.pixels = engine.overlays(msg.overlays);
     }
+    reply.at.posted = now();
     const transfer = [reply.pixels.buffer];
     if (reply.exact) transfer.push(reply.exact.pixels.buffer);
     if (reply.bar) transfer.push(reply.bar.pixels.buffer);

@@ -29,6 +29,8 @@ struct Instance {
     engine: Engine,
     input: Vec<u8>,
     result: Vec<u8>,
+    /// Bytes a request made for JavaScript to take (the shared mesh).
+    output: Vec<u8>,
 }
 
 thread_local! {
@@ -89,11 +91,20 @@ pub extern "C" fn shadelab_models() -> u32 {
 /// of UTF-8), then its bytes ([`Engine::load_file`]).
 #[no_mangle]
 pub extern "C" fn shadelab_load_file(name_len: usize) -> u32 {
+    named_input(name_len, Engine::load_file)
+}
+
+/// Reads the input buffer as a file name (`name_len` bytes of UTF-8)
+/// followed by the file's bytes, and hands both to `f`.
+fn named_input<T: Serialize>(
+    name_len: usize,
+    f: impl FnOnce(&mut Engine, &str, &[u8]) -> Result<T, EngineError>,
+) -> u32 {
     with(|i| {
         let input = std::mem::take(&mut i.input);
         let answer = match input.split_at_checked(name_len) {
             Some((name, bytes)) => match std::str::from_utf8(name) {
-                Ok(name) => i.engine.load_file(name, bytes),
+                Ok(name) => f(&mut i.engine, name, bytes),
                 Err(_) => Err(EngineError("the file name is not UTF-8".into())),
             },
             None => Err(EngineError("the file name is longer than the input".into())),
@@ -101,6 +112,48 @@ pub extern "C" fn shadelab_load_file(name_len: usize) -> u32 {
         i.input = input;
         i.answer(answer)
     })
+}
+
+/// Puts the loaded file's mesh, as bytes for [`shadelab_adopt_file`], at
+/// [`shadelab_output`] ([`Engine::shared_file`]); fails when no file is loaded.
+#[no_mangle]
+pub extern "C" fn shadelab_share_file() -> u32 {
+    with(|i| match i.engine.shared_file() {
+        Some(bytes) => {
+            i.output = bytes;
+            i.answer(Ok(()))
+        }
+        None => i.answer::<()>(Err(EngineError("no file is loaded".into()))),
+    })
+}
+
+/// Takes a mesh another instance parsed: the input buffer holds its name
+/// (`name_len` bytes of UTF-8), then the bytes [`shadelab_share_file`]
+/// gave there ([`Engine::adopt_file`]).
+#[no_mangle]
+pub extern "C" fn shadelab_adopt_file(name_len: usize) -> u32 {
+    named_input(name_len, Engine::adopt_file)
+}
+
+/// How often this instance parsed, prepared and drew ([`Engine::counts`]).
+#[no_mangle]
+pub extern "C" fn shadelab_counts() -> u32 {
+    with(|i| {
+        let counts = i.engine.counts();
+        i.answer(Ok(counts))
+    })
+}
+
+/// Address of the bytes the last request made for JavaScript.
+#[no_mangle]
+pub extern "C" fn shadelab_output() -> *const u8 {
+    with(|i| i.output.as_ptr())
+}
+
+/// Length of the bytes at [`shadelab_output`].
+#[no_mangle]
+pub extern "C" fn shadelab_output_len() -> usize {
+    with(|i| i.output.len())
 }
 
 /// Renders the scene whose TOML text is in the input buffer
@@ -217,6 +270,11 @@ pub extern "C" fn shadelab_pixels_len() -> usize {
 /// The result of the last request as text, for native tests.
 pub fn result_text() -> String {
     with(|i| String::from_utf8_lossy(&i.result).into_owned())
+}
+
+/// The bytes at [`shadelab_output`], for native tests.
+pub fn output_bytes() -> Vec<u8> {
+    with(|i| i.output.clone())
 }
 
 /// Copies `bytes` into the input buffer, as JavaScript does, for native tests.

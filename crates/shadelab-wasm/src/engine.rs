@@ -5,16 +5,23 @@
 //! the `[model]` section (with whether a `[camera]` is given, which decides
 //! whether the mesh is normalised) determines the mesh and its normals, so
 //! those are prepared again only when that part changes; the camera, lights,
-//! material and options are read from the text on every frame through the
-//! same [`SceneFile`] functions that `shadelab render` uses.
+//! material and options are read from the text through the same
+//! [`SceneFile`] functions that `shadelab render` uses. A text that differs
+//! from the last only in the camera's yaw, pitch and zoom (a drag, an arrow
+//! key) is not read again as a whole: those values are set on the scene
+//! file kept from it (`camera_patch`), so a turning frame reads no TOML,
+//! builds no normals and allocates nothing.
 
 use serde::Serialize;
-use shadelab_core::{Image, Mesh, RenderOptions, RenderStats, Renderer, Rgb8, Scene};
+use shadelab_core::{
+    CornerNormals, Image, Mesh, RenderOptions, RenderStats, Renderer, Rgb8, Scene,
+};
 use shadelab_io::{parse_mesh, ModelSection, SceneError, SceneFile};
 
-/// Largest file the viewer reads, in bytes (128 MiB). Each panel's worker
-/// keeps its own copy of the mesh in a 32-bit address space; the command
-/// line reads files up to [`shadelab_io::MAX_MESH_BYTES`].
+/// Largest file the viewer reads, in bytes (128 MiB). The file is parsed
+/// once, but each panel's worker keeps its own copy of the mesh in a 32-bit
+/// address space; the command line reads files up to
+/// [`shadelab_io::MAX_MESH_BYTES`].
 pub const MAX_FILE_BYTES: usize = 128 << 20;
 
 /// Why a request failed: the text shown to the user.
@@ -126,6 +133,25 @@ fn serialize_stats<S: serde::Serializer>(s: &RenderStats, out: S) -> Result<S::O
     .serialize(out)
 }
 
+/// How often the engine did its expensive, rare work: what the page's tests
+/// read to check that a file is parsed once and a frame prepares nothing.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct EngineCounts {
+    /// Files parsed from their bytes ([`Engine::load_file`]).
+    pub files_parsed: u64,
+    /// Meshes taken ready-made from another engine ([`Engine::adopt_file`]).
+    pub files_adopted: u64,
+    /// Models prepared: the mesh built or copied, its normals computed.
+    pub models_prepared: u64,
+    /// Scene texts read as a whole (a frame whose text is the last one's
+    /// reads none; one that only turns the camera counts in `camera_turns`).
+    pub scenes_read: u64,
+    /// Scene texts taken as the last one with the camera turned, unread.
+    pub camera_turns: u64,
+    /// Frames drawn.
+    pub frames: u64,
+}
+
 /// What decides the prepared mesh and normals.
 #[derive(Debug, Clone, PartialEq)]
 struct ModelKey {
@@ -139,6 +165,10 @@ struct ModelKey {
 struct UserFile {
     name: String,
     mesh: Mesh,
+    /// The file's normals exactly as the parsing engine had them, when the
+    /// mesh's differ by the rounding of normalising them again (an adopted
+    /// mesh; see `shared_mesh`).
+    exact_normals: Option<CornerNormals>,
 }
 
 /// Renders panels from scene text, keeping the prepared model between frames
@@ -162,6 +192,7 @@ pub struct Engine {
     /// last instrument request.
     pub(crate) errors: Option<crate::instruments::KeptErrors>,
     pub(crate) images: Vec<Vec<u8>>,
+    counts: EngineCounts,
 }
 
 /// A scene ready to draw, and what it was made from.
@@ -217,12 +248,40 @@ impl Engine {
                 MAX_FILE_BYTES >> 20
             )));
         }
-        if shadelab_core::builtin_model_info(name).is_some() {
-            return Err(EngineError(format!(
-                "{name}: a file may not have the name of a built-in model"
-            )));
-        }
+        check_file_name(name)?;
+        self.counts.files_parsed += 1;
         let mesh = parse_mesh(bytes, name).map_err(|e| EngineError(e.to_string()))?;
+        Ok(self.keep_file(name, mesh, None))
+    }
+
+    /// Takes the mesh another engine parsed, as [`Engine::shared_file`] gave
+    /// it, as the file scenes can name: the panels parse the user's file
+    /// once. On error the previous file stays.
+    ///
+    /// # Errors
+    /// When `name` is a built-in model's, or the bytes are not a mesh
+    /// [`Engine::shared_file`] wrote.
+    pub fn adopt_file(&mut self, name: &str, bytes: &[u8]) -> Result<FileSummary, EngineError> {
+        check_file_name(name)?;
+        let (mesh, exact_normals) = crate::shared_mesh::decode(bytes)?;
+        self.counts.files_adopted += 1;
+        Ok(self.keep_file(name, mesh, exact_normals))
+    }
+
+    /// The loaded file's mesh as bytes for [`Engine::adopt_file`] (None
+    /// before a file is loaded).
+    pub fn shared_file(&self) -> Option<Vec<u8>> {
+        self.file
+            .as_ref()
+            .map(|f| crate::shared_mesh::encode(&f.mesh))
+    }
+
+    fn keep_file(
+        &mut self,
+        name: &str,
+        mesh: Mesh,
+        exact_normals: Option<CornerNormals>,
+    ) -> FileSummary {
         let summary = FileSummary {
             name: name.to_owned(),
             vertices: mesh.positions().len(),
@@ -233,9 +292,15 @@ impl Engine {
         self.file = Some(UserFile {
             name: name.to_owned(),
             mesh,
+            exact_normals,
         });
         self.file_generation += 1;
-        Ok(summary)
+        summary
+    }
+
+    /// How often the engine parsed, prepared and drew.
+    pub fn counts(&self) -> EngineCounts {
+        self.counts
     }
 
     /// Renders the scene `toml` (a scene file's text) into the engine's
@@ -255,6 +320,7 @@ impl Engine {
             .render_into(scene, &options, image)
             .map_err(|e| EngineError(e.to_string()))?;
         rgba_of(image, &mut self.rgba);
+        self.counts.frames += 1;
         self.options = Some(options);
         self.frame_toml.clear();
         self.frame_toml.push_str(toml);
@@ -293,6 +359,14 @@ impl Engine {
                 options: p.options,
             });
         }
+        if self.turn_camera(toml) {
+            let p = self.prepared.as_ref().expect("turn_camera keeps it");
+            return Ok(Loaded {
+                file: &p.file,
+                options: p.options,
+            });
+        }
+        self.counts.scenes_read += 1;
         let file = SceneFile::parse(toml, "scene")?;
         let options = file.render_options()?;
         let key = ModelKey {
@@ -302,7 +376,10 @@ impl Engine {
         };
         let mut scene = match self.prepared.take() {
             Some(p) if p.key == key => p.scene,
-            _ => self.prepare(&file, &options)?,
+            _ => {
+                self.counts.models_prepared += 1;
+                self.prepare(&file, &options)?
+            }
         };
         let result = file.update_scene(&mut scene, &options);
         // Keep the model even when the rest of the scene is invalid; such a
@@ -324,6 +401,43 @@ impl Engine {
             file: &p.file,
             options: p.options,
         })
+    }
+
+    /// Takes `toml` without reading it as a whole when it differs from the
+    /// last scene only in the camera's `yaw`, `pitch` and `zoom`
+    /// (`camera_patch`): sets those on the kept scene file and resolves the
+    /// camera again. False, changing nothing, when the text is more than
+    /// that or the values are refused (the whole reading then says why).
+    fn turn_camera(&mut self, toml: &str) -> bool {
+        let Some(p) = self.prepared.as_mut() else {
+            return false;
+        };
+        if p.toml.is_empty() || p.key.file_generation != self.file_generation {
+            return false;
+        }
+        let Some([yaw, pitch, zoom]) = crate::camera_patch::camera_change(&p.toml, toml) else {
+            return false;
+        };
+        let mut file = p.file.clone();
+        let render = &mut file.render;
+        for (key, value) in [
+            (&mut render.yaw, yaw),
+            (&mut render.pitch, pitch),
+            (&mut render.zoom, zoom),
+        ] {
+            if value.is_some() {
+                *key = value;
+            }
+        }
+        // On error the scene is left as it was.
+        if file.update_scene(&mut p.scene, &p.options).is_err() {
+            return false;
+        }
+        p.file = file;
+        p.toml.clear();
+        p.toml.push_str(toml);
+        self.counts.camera_turns += 1;
+        true
     }
 
     /// The scene [`Engine::load_scene`] last read.
@@ -359,7 +473,14 @@ impl Engine {
                 ),
             }),
         })?;
-        let (mesh, normals) = file.prepare_model(mesh, default_crease)?;
+        let (mesh, mut normals) = file.prepare_model(mesh, default_crease)?;
+        // The scene took the file's normals (they are its normals, index for
+        // index): draw with them as the parsing engine had them.
+        if let Some(exact) = user_file.as_ref().and_then(|f| f.exact_normals.as_ref()) {
+            if mesh.file_normals() == Some(&normals) {
+                normals = exact.clone();
+            }
+        }
         Ok(file.build_scene(mesh, normals, options)?)
     }
 
@@ -381,12 +502,23 @@ impl Engine {
     }
 }
 
-/// Writes `image` as RGBA with alpha 255 into `out`.
+/// A user's file may not take a built-in model's name (a scene names either).
+fn check_file_name(name: &str) -> Result<(), EngineError> {
+    if shadelab_core::builtin_model_info(name).is_some() {
+        return Err(EngineError(format!(
+            "{name}: a file may not have the name of a built-in model"
+        )));
+    }
+    Ok(())
+}
+
+/// Writes `image` as RGBA with alpha 255 into `out`, reusing its memory.
 pub(crate) fn rgba_of(image: &Image, out: &mut Vec<u8>) {
-    out.clear();
-    out.reserve(image.pixels().len() * 4);
-    for p in image.pixels() {
+    // Sized once, then written in place: a loop of fixed-size copies that the
+    // compiler turns into shuffles (no length check per pixel).
+    out.resize(image.pixels().len() * 4, 0);
+    for (o, p) in out.chunks_exact_mut(4).zip(image.pixels()) {
         let [r, g, b] = p.0;
-        out.extend_from_slice(&[r, g, b, 255]);
+        o.copy_from_slice(&[r, g, b, 255]);
     }
 }

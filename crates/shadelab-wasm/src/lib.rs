@@ -1,5 +1,7 @@
 //! shadelab's renderer for the browser: the viewer's Web Workers each load
 //! this crate compiled to `wasm32-unknown-unknown` and draw one panel with it.
+//! The user's file is parsed by one of them; the others take the mesh it
+//! became as bytes (`shadelab_share_file`, `shadelab_adopt_file`).
 //!
 //! The panel is described by the same TOML scene text as `shadelab render`
 //! reads ([`shadelab_io::SceneFile`]), so a panel and the command line given
@@ -16,6 +18,9 @@
 //! |---|---|---|---|
 //! | `shadelab_models` | — | the built-in models | — |
 //! | `shadelab_load_file(name_len)` | file name, then the file's bytes | a summary of the mesh | — |
+//! | `shadelab_share_file` | — | `null` | the parsed mesh as bytes, at `shadelab_output` |
+//! | `shadelab_adopt_file(name_len)` | file name, then bytes `shadelab_share_file` gave | a summary of the mesh | — |
+//! | `shadelab_counts` | — | [`EngineCounts`] | — |
 //! | `shadelab_render` | scene TOML | size, rasterizer, [`shadelab_core::RenderStats`], [`Evaluations`] | RGBA, row 0 at the top |
 //! | `shadelab_overlays` | [`OverlaysRequest`] | `null` | the last frame with overlays |
 //! | `shadelab_errors` | [`ErrorsRequest`] | [`ErrorsAnswer`] | images: heat map (and exact surface) |
@@ -32,11 +37,14 @@
 #![warn(missing_docs)]
 
 pub mod abi;
+mod camera_patch;
 mod engine;
 mod instruments;
+mod shared_mesh;
 
 pub use engine::{
-    Engine, EngineError, Evaluations, FileSummary, FrameInfo, ModelEntry, MAX_FILE_BYTES,
+    Engine, EngineCounts, EngineError, Evaluations, FileSummary, FrameInfo, ModelEntry,
+    MAX_FILE_BYTES,
 };
 pub use instruments::{
     CurveAnswer, ErrorsAnswer, ErrorsRequest, HeatAnswer, HeatRequest, ImageInfo, InspectAnswer,
