@@ -6,7 +6,10 @@
 //! frames fill the caches and the renderer's reusable buffers; then frames
 //! are timed one by one (until `--frames` are done or the row's time budget
 //! is spent) and the median is reported, with the covered pixels and the
-//! mesh's triangles per second at that median.
+//! mesh's triangles per second at that median, and the processor cycles
+//! per covered pixel: threads × time × clock, where the clock is measured
+//! (see [`measure_clock_mhz`]; virtual machines often hide the cycle
+//! counters from `perf`).
 //!
 //! `--export DIR` writes the same scenes for another renderer instead: the
 //! exact triangles, vertex normals, flat-shading inputs, camera, light and
@@ -329,6 +332,12 @@ impl Row {
         self.covered_pixels as f64 / self.median_ms / 1e3
     }
 
+    /// Cycles of all the row's threads per covered pixel at the median
+    /// time, for a clock of `mhz`.
+    fn cycles_per_pixel(&self, mhz: f64) -> f64 {
+        f64::from(self.threads) * self.median_ms * 1e3 * mhz / self.covered_pixels.max(1) as f64
+    }
+
     fn mtriangles_per_s(&self) -> f64 {
         self.triangles as f64 / self.median_ms / 1e3
     }
@@ -387,8 +396,8 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
         let mut heading = || -> std::io::Result<()> {
             writeln!(
                 out,
-                "shadelab bench: {} ({} cores), tiled rasterizer SIMD {}; median of up to {} frames after {} warm-up",
-                machine.cpu, machine.cores, machine.simd, args.frames, args.warmup
+                "shadelab bench: {} ({} cores, clock {:.0} MHz measured), tiled rasterizer SIMD {}; median of up to {} frames after {} warm-up",
+                machine.cpu, machine.cores, machine.clock_mhz, machine.simd, args.frames, args.warmup
             )?;
             for m in &models {
                 writeln!(
@@ -427,7 +436,7 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
                             ..row
                         };
                         if !args.json {
-                            writeln!(out, "{}", row.line())
+                            writeln!(out, "{}", row.line(machine.clock_mhz))
                                 .and_then(|()| out.flush())
                                 .map_err(output_error)?;
                         }
@@ -504,7 +513,7 @@ fn time_row(
 impl Row {
     fn header() -> String {
         format!(
-            "{:<7} {:>7} {:>10} {:<8} {:<9} {:>3} {:>9} {:>9} {:>9} {:>8} {:>6}",
+            "{:<7} {:>7} {:>10} {:<8} {:<9} {:>3} {:>9} {:>9} {:>9} {:>8} {:>7} {:>6}",
             "model",
             "tris",
             "size",
@@ -515,13 +524,14 @@ impl Row {
             "min ms",
             "Mpix/s",
             "Mtri/s",
+            "cyc/px",
             "frames"
         )
     }
 
-    fn line(&self) -> String {
+    fn line(&self, mhz: f64) -> String {
         format!(
-            "{:<7} {:>7} {:>10} {:<8} {:<9} {:>3} {:>9.3} {:>9.3} {:>9.1} {:>8.2} {:>6}",
+            "{:<7} {:>7} {:>10} {:<8} {:<9} {:>3} {:>9.3} {:>9.3} {:>9.1} {:>8.2} {:>7.1} {:>6}",
             self.model,
             self.triangles,
             format!("{}x{}", self.width, self.height),
@@ -532,6 +542,7 @@ impl Row {
             self.min_ms,
             self.mpixels_per_s(),
             self.mtriangles_per_s(),
+            self.cycles_per_pixel(mhz),
             self.frames
         )
     }
@@ -542,6 +553,8 @@ struct Machine {
     cpu: String,
     cores: usize,
     simd: &'static str,
+    /// The core clock while running, measured.
+    clock_mhz: f64,
 }
 
 impl Machine {
@@ -559,8 +572,33 @@ impl Machine {
             cpu,
             cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
             simd: Renderer::new().simd().name(),
+            clock_mhz: measure_clock_mhz(),
         }
     }
+}
+
+/// The clock of the core this runs on, in MHz, estimated from the time a
+/// chain of dependent steps `x = x·x + 1` takes: one 64-bit multiplication
+/// and one addition, 3 + 1 cycles of latency on x86-64 processors since
+/// 2008 (Intel Nehalem, AMD Zen) and on 64-bit Arm cores. Each step needs
+/// the one before, so neither the processor nor the compiler can overlap
+/// or fold them. The fastest of 20 runs of about a millisecond is kept: on
+/// a shared or virtual machine a run can only be slowed down (preempted),
+/// never sped up.
+fn measure_clock_mhz() -> f64 {
+    const STEPS: u64 = 1 << 20;
+    const CYCLES_PER_STEP: f64 = 4.0;
+    let mut best = f64::INFINITY;
+    for _ in 0..20 {
+        let mut x = std::hint::black_box(3u64);
+        let start = Instant::now();
+        for _ in 0..STEPS {
+            x = x.wrapping_mul(x).wrapping_add(1);
+        }
+        std::hint::black_box(x);
+        best = best.min(start.elapsed().as_secs_f64());
+    }
+    STEPS as f64 * CYCLES_PER_STEP / best / 1e6
 }
 
 /// A JSON string literal.
@@ -584,10 +622,11 @@ fn json(machine: &Machine, args: &BenchArgs, rows: &[Row]) -> String {
     let mut s = String::new();
     let _ = write!(
         s,
-        "{{\"machine\":{{\"cpu\":{},\"cores\":{},\"simd\":{}}},\"warmup\":{},\"frames\":{},\"rows\":[",
+        "{{\"machine\":{{\"cpu\":{},\"cores\":{},\"simd\":{},\"clock_mhz\":{:.0}}},\"warmup\":{},\"frames\":{},\"rows\":[",
         quote(&machine.cpu),
         machine.cores,
         quote(machine.simd),
+        machine.clock_mhz,
         args.warmup,
         args.frames
     );
@@ -597,7 +636,7 @@ fn json(machine: &Machine, args: &BenchArgs, rows: &[Row]) -> String {
         }
         let _ = write!(
             s,
-            "{{\"model\":{},\"triangles\":{},\"width\":{},\"height\":{},\"shading\":{},\"rasterizer\":{},\"threads\":{},\"frames\":{},\"median_ms\":{:.4},\"min_ms\":{:.4},\"covered_pixels\":{},\"fragments\":{},\"mpixels_per_s\":{:.2},\"mtriangles_per_s\":{:.3}}}",
+            "{{\"model\":{},\"triangles\":{},\"width\":{},\"height\":{},\"shading\":{},\"rasterizer\":{},\"threads\":{},\"frames\":{},\"median_ms\":{:.4},\"min_ms\":{:.4},\"covered_pixels\":{},\"fragments\":{},\"mpixels_per_s\":{:.2},\"mtriangles_per_s\":{:.3},\"cycles_per_pixel\":{:.2}}}",
             quote(r.model),
             r.triangles,
             r.width,
@@ -611,7 +650,8 @@ fn json(machine: &Machine, args: &BenchArgs, rows: &[Row]) -> String {
             r.covered_pixels,
             r.fragments,
             r.mpixels_per_s(),
-            r.mtriangles_per_s()
+            r.mtriangles_per_s(),
+            r.cycles_per_pixel(machine.clock_mhz)
         );
     }
     s.push_str("]}");

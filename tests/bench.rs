@@ -48,6 +48,9 @@ fn json_has_one_row_per_combination() {
     assert!(json["machine"]["cores"].as_u64().unwrap() >= 1);
     let simd = json["machine"]["simd"].as_str().unwrap();
     assert!(["avx2", "portable"].contains(&simd), "{simd}");
+    // Measured: some hundreds of MHz at the very least, on anything that runs this.
+    let clock = json["machine"]["clock_mhz"].as_f64().unwrap();
+    assert!((100.0..20_000.0).contains(&clock), "{clock}");
     let rows = json["rows"].as_array().unwrap();
     assert_eq!(
         rows.len(),
@@ -69,6 +72,7 @@ fn json_has_one_row_per_combination() {
             "covered_pixels",
             "mpixels_per_s",
             "mtriangles_per_s",
+            "cycles_per_pixel",
         ] {
             assert!(!row[key].is_null(), "{key} missing in {row}");
         }
@@ -112,7 +116,7 @@ fn table_has_a_header_and_a_line_per_row() {
         .lines()
         .find(|l| l.starts_with("model"))
         .expect("a header line");
-    for column in ["ms/frame", "Mpix/s", "Mtri/s", "raster", "thr"] {
+    for column in ["ms/frame", "Mpix/s", "Mtri/s", "cyc/px", "raster", "thr"] {
         assert!(header.contains(column), "{header}");
     }
     let rows: Vec<&str> = stdout

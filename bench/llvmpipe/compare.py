@@ -1,14 +1,22 @@
 """shadelab's tiled rasterizer against Mesa's llvmpipe, side by side.
 
 Reads the standard scenes that `shadelab bench --export DIR` wrote (the exact
-triangles, vertex normals, flat-shading inputs, camera, light and material),
-renders each with llvmpipe through an offscreen EGL context (moderngl) using
-GLSL shaders equivalent to shadelab's three methods, and times it; right
-after each llvmpipe row, times the same row with `shadelab bench --json`, so
-the two alternate under the same machine load. Prints a markdown report:
-the side-by-side table with ratios, shadelab's 1-vs-2-thread scaling, how
-time grows with triangles and pixels, and how often the two images differ
-by more than 2/255 (llvmpipe as a second correctness reference).
+triangles, vertex normals, flat-shading inputs, camera, light and material)
+and times each row with every llvmpipe given (Debian's Mesa, and others
+selected by the `export` lines of `bench/mesa/fetch.sh`) and with
+`shadelab bench --json`, in alternating rounds: each round runs every
+llvmpipe and then shadelab, so that a stretch of load on a shared machine
+weighs on all of them alike, and each keeps its median round.
+
+Each llvmpipe runs in a worker process of its own (`--worker`), since one
+process can load only one Mesa: the worker makes an offscreen EGL context
+(moderngl), compiles GLSL equivalent to shadelab's three methods, and
+answers one JSON request per line on stdin with a JSON line on stdout.
+
+Prints a markdown report: the side-by-side table with a ratio per Mesa,
+shadelab alone (1 and 2 threads, Mtri/s, Mpix/s, cycles per pixel), how
+time grows with triangles and pixels, and how often the images differ by
+more than 2/255 (llvmpipe as a second correctness reference).
 
 Run it through run.sh, which installs what it needs.
 """
@@ -17,18 +25,15 @@ import argparse
 import json
 import os
 import platform
+import shlex
 import statistics
 import subprocess
 import sys
 import time
 from pathlib import Path
 
-# llvmpipe reads its thread count when the context is created.
-os.environ.setdefault("LP_NUM_THREADS", "2")
-
-import moderngl  # noqa: E402
-import numpy as np  # noqa: E402
-from PIL import Image  # noqa: E402
+import numpy as np
+from PIL import Image
 
 VERTEX_PHONG = """
 #version 330
@@ -126,6 +131,8 @@ void main() {
 }
 """
 
+SHADINGS = ("flat", "gouraud", "phong")
+
 
 def perspective(fov_y_degrees, aspect, near, far):
     """gluPerspective, as glam's Mat4::perspective_rh_gl."""
@@ -168,12 +175,15 @@ class Scene:
 
 
 class Llvmpipe:
+    """An llvmpipe context in this process (the worker's side)."""
+
     def __init__(self):
+        import moderngl
+
+        self.gl = moderngl
         self.ctx = moderngl.create_standalone_context(backend="egl")
         self.renderer = self.ctx.info["GL_RENDERER"]
         self.version = self.ctx.info["GL_VERSION"]
-        if "llvmpipe" not in self.renderer:
-            sys.exit(f"the GL renderer is {self.renderer!r}, not llvmpipe")
         self.programs = {
             "phong": self.ctx.program(vertex_shader=VERTEX_PHONG, fragment_shader=FRAGMENT_PHONG),
             "gouraud": self.ctx.program(vertex_shader=VERTEX_GOURAUD, fragment_shader=FRAGMENT_COLOR),
@@ -225,14 +235,15 @@ class Llvmpipe:
 
     def frame(self, fbo, vao, background):
         fbo.use()
-        self.ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
+        self.ctx.enable(self.gl.DEPTH_TEST | self.gl.CULL_FACE)
         self.ctx.front_face = "ccw"
         self.ctx.cull_face = "back"
         fbo.clear(*background, 1.0, depth=1.0)
-        vao.render(moderngl.TRIANGLES)
+        vao.render(self.gl.TRIANGLES)
         self.ctx.finish()
 
     def time(self, scene, shading, frames, warmup, budget):
+        """Median ms per frame, and the last frame's pixels (top row first)."""
         fbo, vao = self.prepare(scene, shading)
         background = [v / 255.0 for v in scene.info["background"]]
         for _ in range(warmup):
@@ -250,17 +261,90 @@ class Llvmpipe:
         return statistics.median(times), pixels
 
 
+def worker(scenes_dir):
+    """Serves timing requests on stdin, one JSON object per line."""
+    out = sys.stdout
+    sys.stdout = sys.stderr  # nothing else may write to the protocol's stream
+    gl = Llvmpipe()
+    print(json.dumps({"renderer": gl.renderer, "version": gl.version}), file=out, flush=True)
+    scenes = {}
+    for line in sys.stdin:
+        request = json.loads(line)
+        stem = request["stem"]
+        if stem not in scenes:
+            scenes = {stem: Scene(scenes_dir, stem)}  # one scene's arrays at a time
+        ms, pixels = gl.time(
+            scenes[stem], request["shading"], request["frames"], request["warmup"], request["budget"]
+        )
+        Image.fromarray(np.ascontiguousarray(pixels)).save(request["image"])
+        print(json.dumps({"ms": ms}), file=out, flush=True)
+
+
+class Mesa:
+    """A worker process running one Mesa's llvmpipe (the coordinator's side)."""
+
+    def __init__(self, scenes_dir, exports):
+        env = dict(os.environ)
+        env.setdefault("LP_NUM_THREADS", "2")
+        for key, value in exports.items():
+            env[key] = value
+        self.process = subprocess.Popen(
+            [sys.executable, __file__, "--worker", "--scenes", str(scenes_dir)],
+            env=env, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
+        )
+        hello = self.read()
+        self.renderer, self.version = hello["renderer"], hello["version"]
+        if "llvmpipe" not in self.renderer:
+            sys.exit(f"the GL renderer is {self.renderer!r}, not llvmpipe")
+        # "4.5 (Core Profile) Mesa 25.0.7-2~bpo12+1" -> "25.0.7"
+        words = self.version.split()
+        full = words[words.index("Mesa") + 1] if "Mesa" in words else self.version
+        self.name = "Mesa " + full.split("-")[0]
+        self.short = "Mesa " + full.split(".")[0]
+        self.threads = env["LP_NUM_THREADS"]
+
+    def read(self):
+        line = self.process.stdout.readline()
+        if not line:
+            sys.exit(f"an llvmpipe worker stopped (exit status {self.process.wait()})")
+        return json.loads(line)
+
+    def time(self, **request):
+        self.process.stdin.write(json.dumps(request) + "\n")
+        self.process.stdin.flush()
+        return self.read()["ms"]
+
+    def close(self):
+        self.process.stdin.close()
+        self.process.wait()
+
+
+def parse_exports(path):
+    """`export KEY=VALUE` lines (as bench/mesa/fetch.sh prints them) as a dict,
+    with `${VAR:+:$VAR}` tails expanded from this environment."""
+    exports = {}
+    for line in Path(path).read_text().splitlines():
+        line = line.strip()
+        if not line.startswith("export "):
+            continue
+        key, value = line[len("export "):].split("=", 1)
+        tail = "${" + key + ":+:$" + key + "}"
+        if value.endswith(tail):
+            value = value[: -len(tail)] + (":" + os.environ[key] if os.environ.get(key) else "")
+        exports[key] = shlex.split(value)[0] if value else ""
+    return exports
+
+
 def shadelab_times(binary, model, size, shading, frames, models_dir):
-    """Median ms for 1 and 2 threads, from `shadelab bench --json`."""
+    """Rows of `shadelab bench --json` for 1 and 2 threads, and its machine."""
     command = [
         str(binary), "bench", "--json", "--rasterizer", "tiled", "--threads", "1,2",
         "--model", model, "--size", size, "--shading", shading, "--frames", str(frames),
     ]
     if models_dir:
         command += ["--models-dir", str(models_dir)]
-    out = subprocess.run(command, check=True, capture_output=True, text=True).stdout
-    rows = json.loads(out)["rows"]
-    return {r["threads"]: r for r in rows}
+    out = json.loads(subprocess.run(command, check=True, capture_output=True, text=True).stdout)
+    return {r["threads"]: r for r in out["rows"]}, out["machine"]
 
 
 def load_average():
@@ -280,143 +364,249 @@ def cpu_name():
     return platform.processor() or platform.machine()
 
 
+def nominal_mhz():
+    """The `cpu MHz` /proc/cpuinfo reports (under a hypervisor, its TSC rate)."""
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("cpu MHz"):
+                return float(line.split(":", 1)[1])
+    except (OSError, ValueError):
+        pass
+    return None
+
+
+def perf_counts_cycles():
+    """Whether `perf stat -e cycles` can count cycles on this machine."""
+    try:
+        out = subprocess.run(
+            ["perf", "stat", "-x,", "-e", "cycles", "true"], capture_output=True, text=True, timeout=30
+        )
+    except (OSError, subprocess.TimeoutExpired):
+        return "perf is not installed"
+    value = out.stderr.strip().splitlines()[-1].split(",")[0] if out.stderr.strip() else ""
+    if value.replace(".", "").isdigit():
+        return "available"
+    return f"`perf stat -e cycles` says {value or 'nothing'!r}"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--scenes", type=Path, required=True, help="what shadelab bench --export wrote")
-    parser.add_argument("--shadelab", type=Path, required=True, help="the shadelab binary")
-    parser.add_argument("--images", type=Path, required=True, help="where to save llvmpipe's images")
+    parser.add_argument("--worker", action="store_true", help="serve llvmpipe timings on stdin (internal)")
+    parser.add_argument("--shadelab", type=Path, help="the shadelab binary")
+    parser.add_argument("--images", type=Path, help="where to save llvmpipe's images")
+    parser.add_argument(
+        "--mesa-env", type=Path, action="append", default=[],
+        help="a file of `export` lines selecting another Mesa (bench/mesa/fetch.sh); repeatable."
+        " Debian's Mesa (this process's environment) always runs first",
+    )
     parser.add_argument("--models-dir", type=Path)
     parser.add_argument("--frames", type=int, default=31)
     parser.add_argument("--warmup", type=int, default=3)
     parser.add_argument("--budget", type=float, default=3.0, help="seconds per llvmpipe row at most")
     parser.add_argument(
         "--rounds", type=int, default=3,
-        help="times each row is measured (llvmpipe, then shadelab); the median round is reported",
+        help="times each row is measured (each llvmpipe, then shadelab); the median round is reported",
     )
     parser.add_argument("--command", default="bash bench/llvmpipe/run.sh")
     args = parser.parse_args()
+    if args.worker:
+        return worker(args.scenes)
+    if not args.shadelab or not args.images:
+        parser.error("--shadelab and --images are required")
 
-    gl = Llvmpipe()
+    mesas = [Mesa(args.scenes, {})] + [Mesa(args.scenes, parse_exports(p)) for p in args.mesa_env]
     args.images.mkdir(parents=True, exist_ok=True)
     stems = sorted(p.name[: -len(".json")] for p in args.scenes.glob("*.json"))
     order = {"sphere": 0, "teapot": 1, "bunny": 2, "dragon": 3, "quad": 4}
-    stems.sort(key=lambda s: (order.get(s.split("-")[0], 9), -int(s.split("-")[1].split("x")[0])))
+    stems.sort(key=lambda s: (order.get(s.split("-")[0], 9), int(s.split("-")[1].split("x")[0])))
     load_before = load_average()
-    rows = []
+    started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    rows, machine = [], None
     for stem in stems:
         scene = Scene(args.scenes, stem)
         model = scene.info["model"]
         size = f'{scene.info["width"]}x{scene.info["height"]}'
-        for shading in ("flat", "gouraud", "phong"):
+        for shading in SHADINGS:
             ours_png = args.scenes / f"{stem}-{shading}.png"
             if not ours_png.exists():
                 continue
-            # Rounds alternate the two renderers, so that a stretch of load on
-            # a shared machine weighs on both; each takes its median round.
-            gl_rounds, ours_rounds = [], []
+            images = [args.images / f"{stem}-{shading}-llvmpipe-{m.short.split()[1]}.png" for m in mesas]
+            gl_rounds = [[] for _ in mesas]
+            ours_rounds = []
             for _ in range(max(args.rounds, 1)):
-                gl_ms, gl_pixels = gl.time(scene, shading, args.frames, args.warmup, args.budget)
-                gl_rounds.append(gl_ms)
-                ours_rounds.append(
-                    shadelab_times(args.shadelab, model, size, shading, args.frames, args.models_dir)
+                for mesa, rounds, image in zip(mesas, gl_rounds, images):
+                    rounds.append(
+                        mesa.time(
+                            stem=stem, shading=shading, frames=args.frames, warmup=args.warmup,
+                            budget=args.budget, image=str(image),
+                        )
+                    )
+                ours, machine = shadelab_times(
+                    args.shadelab, model, size, shading, args.frames, args.models_dir
                 )
-            gl_ms = statistics.median(gl_rounds)
-            ours = {
-                threads: {
-                    "median_ms": statistics.median(o[threads]["median_ms"] for o in ours_rounds),
-                    "covered_pixels": ours_rounds[0][threads]["covered_pixels"],
-                }
-                for threads in (1, 2)
-            }
-            Image.fromarray(gl_pixels).save(args.images / f"{stem}-{shading}-llvmpipe.png")
-            ours_pixels = np.asarray(Image.open(ours_png).convert("RGB"))
-            differ = (np.abs(ours_pixels.astype(int) - gl_pixels.astype(int)) > 2).any(axis=2)
+                ours_rounds.append(ours)
+            ours_pixels = np.asarray(Image.open(ours_png).convert("RGB")).astype(int)
             background = np.array(scene.info["background"], dtype=np.uint8)
-            drawn = (ours_pixels != background).any(axis=2) | (gl_pixels != background).any(axis=2)
+            differ, drawn = [], []
+            for image in images:
+                gl_pixels = np.asarray(Image.open(image).convert("RGB"))
+                differ.append(int((np.abs(ours_pixels - gl_pixels.astype(int)) > 2).any(axis=2).sum()))
+                drawn.append(
+                    int(((ours_pixels != background).any(axis=2) | (gl_pixels != background).any(axis=2)).sum())
+                )
+            median = lambda threads, key: statistics.median(o[threads][key] for o in ours_rounds)  # noqa: E731
             rows.append(
                 {
                     "model": model,
                     "triangles": scene.info["triangles"],
                     "size": size,
+                    "width": scene.info["width"],
+                    "height": scene.info["height"],
                     "shading": shading,
-                    "llvmpipe_ms": gl_ms,
-                    "ours_1": ours[1]["median_ms"],
-                    "ours_2": ours[2]["median_ms"],
-                    "covered": ours[2]["covered_pixels"],
-                    "differ": int(differ.sum()),
-                    "drawn": int(drawn.sum()),
-                    "pixels": differ.size,
+                    "gl_ms": [statistics.median(r) for r in gl_rounds],
+                    "gl_rounds": gl_rounds,
+                    "ours_1": median(1, "median_ms"),
+                    "ours_2": median(2, "median_ms"),
+                    "ours_rounds": [o[2]["median_ms"] for o in ours_rounds],
+                    "covered": ours_rounds[0][2]["covered_pixels"],
+                    "differ": differ,
+                    "drawn": drawn,
+                    "pixels": scene.info["width"] * scene.info["height"],
                 }
             )
             r = rows[-1]
-            print(
-                f"{model:7} {size:>9} {shading:8} llvmpipe {gl_ms:8.2f} ms  shadelab {r['ours_2']:7.2f} ms"
-                f"  ratio {gl_ms / r['ours_2']:5.2f}  differ {r['differ'] / r['pixels']:.4%}",
-                file=sys.stderr,
+            against = "  ".join(
+                f"{m.short} {ms:7.2f} ms ({ms / r['ours_2']:5.2f}×)" for m, ms in zip(mesas, r["gl_ms"])
             )
+            print(f"{model:7} {size:>9} {shading:8} shadelab {r['ours_2']:7.2f} ms  {against}", file=sys.stderr)
+    for mesa in mesas:
+        mesa.close()
     load_after = load_average()
-    report(args, gl, rows, load_before, load_after)
+    report(args, mesas, rows, machine or {}, started, load_before, load_after)
 
 
-def report(args, gl, rows, load_before, load_after):
+def report(args, mesas, rows, machine, started, load_before, load_after):
     out = []
     p = out.append
-    p(f"Measured {time.strftime('%Y-%m-%d %H:%M %Z')} on {cpu_name()}, {os.cpu_count()} cores;")
+    newest = mesas[-1]
+    p(f"Measured {started} on {cpu_name()}, {os.cpu_count()} cores;")
     p(f"load average (1, 5, 15 min) {' '.join(load_before)} before, {' '.join(load_after)} after.")
-    p(f"llvmpipe: `{gl.renderer}`, OpenGL {gl.version}, LP_NUM_THREADS={os.environ['LP_NUM_THREADS']}.")
+    for m in mesas:
+        p(f"{m.name}: `{m.renderer}`, OpenGL {m.version}, LP_NUM_THREADS={m.threads}.")
     p(
-        f"Command: `{args.command}`. Median ms per frame of up to {args.frames} frames after {args.warmup} warm-up,"
-        f" each row measured in {args.rounds} alternating rounds (llvmpipe, shadelab) and the median round kept;"
+        f"Command: `{args.command}`. Median ms per frame of up to {args.frames} frames after {args.warmup} warm-up;"
+        f" each row measured in {args.rounds} alternating rounds ({', '.join(m.name for m in mesas)}, then shadelab),"
+        " the median round of each kept."
     )
     p("llvmpipe's frame is clear + draw + glFinish; shadelab's is `Renderer::render_into` (clear, draw, RGB image).")
     p("")
-    p("### shadelab (tiled, 2 threads) against llvmpipe (2 threads)")
+    p(f"### shadelab (tiled, 2 threads) against llvmpipe (2 threads), {' and '.join(m.name for m in mesas)}")
     p("")
-    p("| model | triangles | size | shading | llvmpipe ms | shadelab ms | ratio | ≥ 3× |")
-    p("|---|---:|---|---|---:|---:|---:|:-:|")
+    head = " | ".join(f"{m.name} ms" for m in mesas)
+    ratios = " | ".join(f"× {m.short}" for m in mesas)
+    p(f"| model | triangles | size | shading | {head} | shadelab ms | {ratios} | ≥ 3× {newest.short} |")
+    p("|---|---:|---|---|" + "---:|" * len(mesas) + "---:|" + "---:|" * len(mesas) + ":-:|")
     for r in rows:
-        ratio = r["llvmpipe_ms"] / r["ours_2"]
+        times = " | ".join(f"{ms:.2f}" for ms in r["gl_ms"])
+        ratio = " | ".join(f"{ms / r['ours_2']:.2f}×" for ms in r["gl_ms"])
+        met = r["gl_ms"][-1] / r["ours_2"] >= 3
         p(
-            f"| {r['model']} | {r['triangles']:,} | {r['size']} | {r['shading']} | {r['llvmpipe_ms']:.2f} "
-            f"| {r['ours_2']:.2f} | {ratio:.2f}× | {'yes' if ratio >= 3 else '**no**'} |"
+            f"| {r['model']} | {r['triangles']:,} | {r['size']} | {r['shading']} | {times} "
+            f"| {r['ours_2']:.2f} | {ratio} | {'yes' if met else '**no**'} |"
         )
     p("")
-    met = sum(1 for r in rows if r["llvmpipe_ms"] / r["ours_2"] >= 3)
-    p(f"ratio = llvmpipe's time / shadelab's time; {met} of {len(rows)} rows at 3× or more.")
+    p("ratio = llvmpipe's time / shadelab's time. " + "; ".join(
+        f"against {m.name}: {sum(1 for r in rows if r['gl_ms'][i] / r['ours_2'] >= 3)} of {len(rows)} rows"
+        f" at 3× or more, {sum(1 for r in rows if r['gl_ms'][i] / r['ours_2'] >= 5)} at 5×"
+        for i, m in enumerate(mesas)
+    ) + ".")
     p("")
-    p("### Threads: shadelab with 1 and 2 threads")
+    clock = machine.get("clock_mhz")
+    nominal = nominal_mhz()
+    p("### shadelab alone: threads, throughput, cycles per pixel")
     p("")
-    p("| model | size | shading | 1 thread ms | 2 threads ms | speed-up |")
-    p("|---|---|---|---:|---:|---:|")
+    p(
+        "Medians of the same rounds. Mtri/s and Mpix/s at 2 threads (Mpix/s counts the pixels drawn);"
+        " cycles per pixel = one thread's time × the clock / pixels drawn, the work of one core per pixel"
+        f" at a clock of {clock:.0f} MHz, measured by `shadelab bench` with a chain of dependent multiply-adds"
+        f" (/proc/cpuinfo says {nominal:.0f} MHz; the cycle counters: {perf_counts_cycles()})."
+        if clock and nominal
+        else "Mtri/s and Mpix/s at 2 threads; no clock was measured, so no cycles per pixel."
+    )
+    p("")
+    p("| model | triangles | size | shading | 1 thread ms | 2 threads ms | 2 threads / 1 | Mtri/s | Mpix/s | cycles/px |")
+    p("|---|---:|---|---|---:|---:|---:|---:|---:|---:|")
     for r in rows:
+        cycles = f"{r['ours_1'] * 1e3 * clock / max(r['covered'], 1):.1f}" if clock else "–"
         p(
-            f"| {r['model']} | {r['size']} | {r['shading']} | {r['ours_1']:.2f} | {r['ours_2']:.2f} "
-            f"| {r['ours_1'] / r['ours_2']:.2f}× |"
+            f"| {r['model']} | {r['triangles']:,} | {r['size']} | {r['shading']} | {r['ours_1']:.2f} "
+            f"| {r['ours_2']:.2f} | {r['ours_1'] / r['ours_2']:.2f}× | {r['triangles'] / r['ours_2'] / 1e3:.1f} "
+            f"| {r['covered'] / r['ours_2'] / 1e3:,.0f} | {cycles} |"
         )
     p("")
-    p("### How time grows (shadelab, 2 threads, Phong)")
-    p("")
-    p("| model | triangles | 512×512 ms | 1920×1080 ms | covered px at 1080p | 1080p / 512 |")
-    p("|---|---:|---:|---:|---:|---:|")
+    by = {(r["model"], r["size"], r["shading"]): r for r in rows}
+    goals = []
+    quad_phong = by.get(("quad", "1920x1080", "phong"))
+    if quad_phong:
+        goals.append(
+            f"full-screen Phong at 1920×1080 fills {quad_phong['covered'] / quad_phong['ours_2'] / 1e3:,.0f} Mpix/s"
+            " (goal: 1,000)"
+        )
+    for size in ("512x512", "1920x1080"):
+        flat, gouraud = by.get(("quad", size, "flat")), by.get(("quad", size, "gouraud"))
+        if flat and gouraud:
+            goals.append(
+                f"the Gouraud quad at {size.replace('x', '×')} takes {gouraud['ours_2'] / flat['ours_2']:.2f}×"
+                " the flat one's time (goal: 1.2× at most)"
+            )
+    big = [r for r in rows if r["size"] == "1920x1080" and r["model"] in ("bunny", "dragon", "quad")]
+    if big:
+        speedups = [r["ours_1"] / r["ours_2"] for r in big]
+        goals.append(
+            f"2 threads against 1 on the {len(big)} rows at 1920×1080: {min(speedups):.2f}–{max(speedups):.2f}×,"
+            f" {sum(1 for s in speedups if s >= 1.8)} of {len(big)} at 1.8× or more"
+        )
+    if goals:
+        p("Goals of the fill: " + "; ".join(goals) + ".")
+        p("")
     phong = {(r["model"], r["size"]): r for r in rows if r["shading"] == "phong"}
     models = sorted({r["model"] for r in rows}, key=lambda m: next(r["triangles"] for r in rows if r["model"] == m))
-    for m in models:
-        small, big = phong.get((m, "512x512")), phong.get((m, "1920x1080"))
-        if small and big:
+    growth = [(m, phong.get((m, "512x512")), phong.get((m, "1920x1080"))) for m in models]
+    growth = [g for g in growth if g[1] and g[2]]
+    if growth:
+        p("### How time grows (shadelab, 2 threads, Phong)")
+        p("")
+        p("| model | triangles | 512×512 ms | 1920×1080 ms | covered px at 1080p | 1080p / 512 |")
+        p("|---|---:|---:|---:|---:|---:|")
+        for m, small, big in growth:
             p(
                 f"| {m} | {small['triangles']:,} | {small['ours_2']:.2f} | {big['ours_2']:.2f} "
                 f"| {big['covered']:,} | {big['ours_2'] / small['ours_2']:.2f}× |"
             )
-    p("")
+        p("")
     p("### The same scene drawn by both: pixels differing by more than 2/255 in a channel")
     p("")
-    p("| model | size | shading | differing pixels | of all pixels | of drawn pixels |")
-    p("|---|---|---|---:|---:|---:|")
+    p("| model | size | shading | " + " | ".join(f"differing from {m.name} (of drawn pixels)" for m in mesas) + " |")
+    p("|---|---|---|" + "---:|" * len(mesas))
     for r in rows:
-        p(
-            f"| {r['model']} | {r['size']} | {r['shading']} | {r['differ']:,} | {r['differ'] / r['pixels']:.3%} "
-            f"| {r['differ'] / max(r['drawn'], 1):.3%} |"
+        cells = " | ".join(
+            f"{d:,} ({d / max(n, 1):.3%})" for d, n in zip(r["differ"], r["drawn"])
         )
+        p(f"| {r['model']} | {r['size']} | {r['shading']} | {cells} |")
+    p("")
+    p(
+        "Rounds (ms; "
+        + ", ".join(m.name for m in mesas)
+        + ", shadelab at 2 threads): "
+        + json.dumps(
+            {
+                f"{r['model']} {r['size']} {r['shading']}": [[round(x, 2) for x in g] for g in r["gl_rounds"]]
+                + [[round(x, 2) for x in r["ours_rounds"]]]
+                for r in rows
+            }
+        )
+    )
     print("\n".join(out))
 
 

@@ -1,13 +1,18 @@
 #!/usr/bin/env bash
-# shadelab against Mesa's llvmpipe on the standard scenes, side by side.
+# shadelab against Mesa's llvmpipe on the standard scenes, side by side:
+# Debian's Mesa 22 and Mesa 25.0.7 from bookworm-backports (fetched into
+# target/mesa-25 by bench/mesa/fetch.sh, nothing in /etc changed), each in
+# a worker process of its own, in alternating rounds with shadelab.
 # Installs what it needs (Debian's Mesa EGL driver, a Python venv with
 # moderngl, numpy and Pillow), builds shadelab, exports the scenes, and
 # prints the markdown tables of BENCHMARKS.md to stdout (progress on stderr).
 #
-#   bash bench/llvmpipe/run.sh                 # the whole standard set
+#   bash bench/llvmpipe/run.sh                 # the 18 standard rows: bunny, dragon, quad
 #   FRAMES=11 bash bench/llvmpipe/run.sh       # quicker
 #   ROUNDS=5 bash bench/llvmpipe/run.sh        # each row measured 5 times (default 3), median kept
 #   MODELS=bunny,quad SIZES=1920x1080 bash bench/llvmpipe/run.sh
+#   MODELS=sphere,teapot,bunny,dragon,quad bash bench/llvmpipe/run.sh   # with the small built-in models
+#   MESA25=0 bash bench/llvmpipe/run.sh        # Debian's Mesa only (no download)
 #   UPDATE=1 bash bench/llvmpipe/run.sh        # also rewrite BENCHMARKS.md's measured part
 #
 # Images (ours and llvmpipe's) are left in target/llvmpipe/.
@@ -30,18 +35,24 @@ if [ ! -x "$out/venv/bin/python" ]; then
 fi
 "$out/venv/bin/pip" install -q moderngl numpy pillow >&2
 
+mesa_env=()
+if [ "${MESA25:-1}" != 0 ]; then
+  mkdir -p "$out"
+  bash bench/mesa/fetch.sh >"$out/mesa-25.env"
+  mesa_env+=(--mesa-env "$out/mesa-25.env")
+fi
+
 cargo build --release --locked -q >&2
 bin=target/release/shadelab
-select=()
-[ -n "${MODELS:-}" ] && select+=(--model "$MODELS")
+select=(--model "${MODELS:-bunny,dragon,quad}")
 [ -n "${SIZES:-}" ] && select+=(--size "$SIZES")
 rm -rf "$out/scenes"
 "$bin" bench --export "$out/scenes" "${select[@]}" >&2
 
 LP_NUM_THREADS=2 "$out/venv/bin/python" bench/llvmpipe/compare.py \
   --scenes "$out/scenes" --shadelab "$bin" --images "$out/images" --frames "$frames" \
-  --rounds "${ROUNDS:-3}" \
-  --command "${FRAMES:+FRAMES=$FRAMES }${ROUNDS:+ROUNDS=$ROUNDS }${MODELS:+MODELS=$MODELS }${SIZES:+SIZES=$SIZES }bash bench/llvmpipe/run.sh" \
+  --rounds "${ROUNDS:-3}" "${mesa_env[@]}" \
+  --command "${FRAMES:+FRAMES=$FRAMES }${ROUNDS:+ROUNDS=$ROUNDS }${MODELS:+MODELS=$MODELS }${SIZES:+SIZES=$SIZES }${MESA25:+MESA25=$MESA25 }bash bench/llvmpipe/run.sh" \
   | tee "$out/report.md"
 
 if [ -n "${UPDATE:-}" ]; then

@@ -66,12 +66,13 @@ SOURCES
   say "mesa: downloading ${resolved[*]}"
   (cd "$dir/debs" && apt-get "${apt_opts[@]}" download "${resolved[@]}" >&2)
   for deb in "$dir"/debs/*.deb; do dpkg -x "$deb" "$root"; done
-  # glvnd's vendor file, pointing at the private libEGL_mesa.
-  cat >"$dir/50_mesa.json" <<JSON
-{"file_format_version": "1.0.0", "ICD": {"library_path": "$lib/libEGL_mesa.so.0"}}
-JSON
   touch "$dir/.done-$want"
 fi
+# glvnd's vendor file, pointing at the private libEGL_mesa; written every
+# time, so that a folder copied or moved elsewhere still points at itself.
+cat >"$dir/50_mesa.json" <<JSON
+{"file_format_version": "1.0.0", "ICD": {"library_path": "$lib/libEGL_mesa.so.0"}}
+JSON
 
 exports="export LD_LIBRARY_PATH=$lib\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}
 export LIBGL_DRIVERS_PATH=$lib/dri
