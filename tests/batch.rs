@@ -569,3 +569,48 @@ fn a_truncated_output_is_not_taken_as_complete() {
         1
     );
 }
+
+#[test]
+fn a_mesh_too_large_for_a_workers_share_of_memory_is_an_error_row() {
+    let tmp = tempfile::tempdir().unwrap();
+    let root = tmp.path();
+    std::fs::write(root.join("cube.obj"), CUBE_OBJ).unwrap();
+    // 16384×4096 pixels need about 1 GiB to draw; 16 workers share 8 GiB,
+    // 512 MiB each: the large line is refused before a frame is allocated,
+    // the small one is drawn.
+    std::fs::write(
+        root.join("m.jsonl"),
+        "{\"path\": \"cube.obj\", \"id\": \"huge\", \"size\": \"16384x4096\"}\n{\"path\": \"cube.obj\", \"id\": \"small\"}\n",
+    )
+    .unwrap();
+    let out = run(
+        root,
+        &[
+            "batch",
+            "m.jsonl",
+            "-o",
+            "out",
+            "--size",
+            "16x16",
+            "--jobs",
+            "16",
+            "--progress",
+            "quiet",
+        ],
+    );
+    assert_ok(&out);
+    let rows = index(&root.join("out/index.jsonl"));
+    let huge = rows.iter().find(|r| r["id"] == "huge").unwrap();
+    assert_eq!(huge["status"], "error", "{huge}");
+    let message = huge["error"].as_str().unwrap();
+    assert!(
+        message.contains("memory") && message.contains("16 workers"),
+        "{message}"
+    );
+    let small = rows.iter().find(|r| r["id"] == "small").unwrap();
+    assert_eq!(small["status"], "ok", "{small}");
+    assert_eq!(
+        pngs(&root.join("out")),
+        BTreeSet::from(["small/v00_phong.png".to_owned()])
+    );
+}

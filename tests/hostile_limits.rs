@@ -196,28 +196,29 @@ fn quad_angles_are_validated() {
     ));
 }
 
+/// `bench` flags for one quick row of 8×8 pixels.
+const QUICK_BENCH: [&str; 12] = [
+    "--size",
+    "8x8",
+    "--shading",
+    "flat",
+    "--threads",
+    "1",
+    "--rasterizer",
+    "tiled",
+    "--frames",
+    "1",
+    "--warmup",
+    "0",
+];
+
 #[test]
 fn nothing_panics_on_odd_environments_and_outputs() {
     let dir = tempfile::tempdir().unwrap();
-    let bench = [
-        "bench",
-        "--model",
-        "quad",
-        "--size",
-        "8x8",
-        "--shading",
-        "flat",
-        "--threads",
-        "1",
-        "--rasterizer",
-        "tiled",
-        "--frames",
-        "1",
-        "--warmup",
-        "0",
-    ];
+    let mut bench = vec!["bench", "--model", "quad"];
+    bench.extend_from_slice(&QUICK_BENCH);
     for budget in ["inf", "nan", "1e300", "-0.5"] {
-        let mut args = bench.to_vec();
+        let mut args = bench.clone();
         args.extend_from_slice(&["--budget", budget]);
         let out = run(dir.path(), &args);
         assert_input_error(&out, &["--budget", "0..=3600"]);
@@ -276,28 +277,14 @@ fn nothing_panics_on_odd_environments_and_outputs() {
 #[test]
 fn bench_with_a_missing_models_folder_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
-    let quick = [
-        "--size",
-        "8x8",
-        "--shading",
-        "flat",
-        "--threads",
-        "1",
-        "--rasterizer",
-        "tiled",
-        "--frames",
-        "1",
-        "--warmup",
-        "0",
-        "--budget",
-        "0",
-    ];
     let mut args = vec!["bench", "--models-dir", "no/such/folder", "--model", "quad"];
-    args.extend_from_slice(&quick);
+    args.extend_from_slice(&QUICK_BENCH);
+    args.extend_from_slice(&["--budget", "0"]);
     assert_input_error(&run(dir.path(), &args), &["--models-dir", "no/such/folder"]);
     std::fs::create_dir(dir.path().join("empty")).unwrap();
     let mut args = vec!["bench", "--models-dir", "empty", "--model", "bunny"];
-    args.extend_from_slice(&quick);
+    args.extend_from_slice(&QUICK_BENCH);
+    args.extend_from_slice(&["--budget", "0"]);
     assert_input_error(&run(dir.path(), &args), &["bunny", "stanford-bunny.obj"]);
 }
 

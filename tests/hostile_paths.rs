@@ -92,18 +92,10 @@ fn gltf_images_outside_the_folder_are_refused_and_inside_ones_are_not() {
     assert_ok(&render_model(dir.path(), &model));
 }
 
-const CUBE_WITH_MATERIAL: &str = "\
-mtllib lib.mtl
-usemtl green
-v 0 0 0
-v 1 0 0
-v 0 1 0
-v 0 0 1
-f 1 3 2
-f 1 2 4
-f 1 4 3
-f 2 3 4
-";
+/// A tetrahedron that takes its colour from `lib.mtl`'s material `green`.
+fn tetra_with_material() -> String {
+    format!("mtllib lib.mtl\nusemtl green\n{TETRA}")
+}
 
 /// The most common colour of the drawn (non-black) pixels of `out.png`.
 fn main_colour(dir: &Path) -> [u8; 3] {
@@ -137,7 +129,7 @@ fn a_material_library_outside_the_folder_or_not_a_file_is_passed_over_with_a_war
     let model = dir.path().join("model/tetra.obj");
     // Inside: read and used.
     write(dir.path(), "model/lib.mtl", "newmtl green\nKd 0 1 0\n");
-    write(dir.path(), "model/tetra.obj", CUBE_WITH_MATERIAL);
+    write(dir.path(), "model/tetra.obj", &tetra_with_material());
     let out = render_model(dir.path(), &model);
     assert_ok(&out);
     assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
@@ -163,7 +155,7 @@ fn a_material_library_outside_the_folder_or_not_a_file_is_passed_over_with_a_war
         write(
             dir.path(),
             "model/tetra.obj",
-            CUBE_WITH_MATERIAL.replace("lib.mtl", library),
+            tetra_with_material().replace("lib.mtl", library),
         );
         // Standard input left open: reading it would wait for ever.
         let mut c = command(

@@ -77,7 +77,7 @@ test('on a low-poly sphere flat shows facets, Phong a highlight that Gouraud lac
   assert.ok(s.flat.covered / s.flat.colours > 2000, JSON.stringify(s.flat));
   assert.ok(s.gouraud.colours > 10 * s.flat.colours, `Gouraud is smooth: ${s.gouraud.colours} colours`);
   assert.ok(s.phong.colours > 10 * s.flat.colours, `Phong is smooth: ${s.phong.colours} colours`);
-  // Kd = Ka = (255, 60, 60), white light, ambient 0.2: without the specular
+  // Kd = Ka = (200, 60, 60), white light, ambient 0.2: without the specular
   // term green never exceeds round((0.2 + 1) · 60) = 72; the highlight is white.
   assert.ok(s.gouraud.maxGreen <= 72, `Gouraud has no highlight: max green ${s.gouraud.maxGreen}`);
   assert.equal(s.gouraud.highlight, 0);

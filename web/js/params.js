@@ -35,8 +35,8 @@ export const PARAMS = [
   { name: 'position', link: 'lightPos', group: 'light', kind: 'vec3', default: [2, 2, 3], max: 1000, slider: [-10, 10], step: 0.05 },
   { name: 'direction', link: 'lightDir', group: 'light', kind: 'vec3', default: [-1, -1, -1], max: 1000, slider: [-1, 1], step: 0.01 },
 
-  { name: 'material.ka', link: 'ka', group: 'material', kind: 'rgb', default: [255, 60, 60] },
-  { name: 'material.kd', link: 'kd', group: 'material', kind: 'rgb', default: [255, 60, 60] },
+  { name: 'material.ka', link: 'ka', group: 'material', kind: 'rgb', default: [200, 60, 60] },
+  { name: 'material.kd', link: 'kd', group: 'material', kind: 'rgb', default: [200, 60, 60] },
   { name: 'material.ks', link: 'ks', group: 'material', kind: 'rgb', default: [255, 255, 255] },
   { name: 'material.shininess', link: 'shininess', group: 'material', kind: 'number', default: 32, min: 0, max: 10000, slider: [0, 256], step: 1 },
 

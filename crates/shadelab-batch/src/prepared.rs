@@ -84,6 +84,17 @@ impl PreparedMesh {
         self.scene.mesh.triangle_count()
     }
 
+    /// The memory drawing this mesh needs, estimated as `render` estimates
+    /// it (`shadelab_core::limits::memory_estimate`): the mesh and one frame.
+    pub fn memory_estimate(&self) -> u64 {
+        shadelab_core::limits::memory_estimate(
+            self.scene.mesh.positions().len(),
+            self.scene.mesh.triangle_count(),
+            u64::from(self.options.width) * u64::from(self.options.height),
+            shadelab_core::limits::RENDER_BYTES_PER_PIXEL,
+        )
+    }
+
     /// The scene as the last frame drew it (or as loaded).
     pub fn scene(&self) -> &Scene {
         &self.scene

@@ -35,6 +35,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 
+use shadelab_core::limits::MAX_MEMORY_BYTES;
 use shadelab_core::{Image, Renderer, Rgb8, Shading};
 use shadelab_io::{write_png_with, PngCompression, SceneFile, MAX_MESH_BYTES};
 
@@ -165,6 +166,8 @@ struct Run<'a> {
     skipped: AtomicU64,
     failed: AtomicU64,
     bad_lines: AtomicU64,
+    /// How many workers draw at once (each may hold a mesh and a frame).
+    jobs: usize,
 }
 
 /// Renders the manifest's share as `config` says.
@@ -204,6 +207,10 @@ pub fn run(config: &BatchConfig) -> Result<Summary, BatchError> {
         source: e,
     })?;
     let total = count_share(&config.manifest, config.shard)?;
+    let jobs = match config.jobs {
+        0 => 2 * std::thread::available_parallelism().map_or(1, |n| n.get()),
+        n => n,
+    };
     let run = Run {
         config,
         modes,
@@ -218,10 +225,7 @@ pub fn run(config: &BatchConfig) -> Result<Summary, BatchError> {
         skipped: AtomicU64::new(0),
         failed: AtomicU64::new(0),
         bad_lines: AtomicU64::new(0),
-    };
-    let jobs = match config.jobs {
-        0 => 2 * std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n,
+        jobs,
     };
     let manifest = Mutex::new(manifest);
     let index_error = Mutex::new(None);
@@ -459,6 +463,17 @@ impl Run<'_> {
         let mut mesh = PreparedMesh::load(&self.config.settings, &path, entry.size)
             .map_err(|e| Failed::Mesh(e.to_string()))?;
         let triangles = mesh.triangles() as u64;
+        // Every worker may hold a mesh this large at once: each gets its share.
+        let share = MAX_MEMORY_BYTES / self.jobs.max(1) as u64;
+        if mesh.memory_estimate() > share {
+            return Err(Failed::Mesh(format!(
+                "drawing it would need about {} MiB of memory, more than a worker's share ({} MiB, the limit of {} MiB over {} workers)",
+                mesh.memory_estimate() >> 20,
+                share >> 20,
+                MAX_MEMORY_BYTES >> 20,
+                self.jobs.max(1)
+            )));
+        }
         std::fs::create_dir_all(self.config.output.join(id))
             .map_err(|e| Failed::Mesh(format!("cannot make the output folder: {e}")))?;
         let mut renderer = Renderer::new();

@@ -25,11 +25,16 @@ pub struct Material {
     pub shininess: f32,
 }
 
+/// The default material: a red of Ka = Kd = (200, 60, 60) with a white
+/// specular term. Under the default lighting (ambient 0.2, one white light of
+/// intensity 1) the brightest diffuse red is 0.2·200 + 200 = 240 < 255, so no
+/// channel clips outside the specular highlight and the three methods'
+/// differences show at first sight (a Kd red of 255 clipped over a large area).
 impl Default for Material {
     fn default() -> Material {
         Material {
-            ka: Rgb::new(1.0, 60.0 / 255.0, 60.0 / 255.0),
-            kd: Rgb::new(1.0, 60.0 / 255.0, 60.0 / 255.0),
+            ka: Rgb::new(200.0 / 255.0, 60.0 / 255.0, 60.0 / 255.0),
+            kd: Rgb::new(200.0 / 255.0, 60.0 / 255.0, 60.0 / 255.0),
             ks: Rgb::WHITE,
             shininess: 32.0,
         }

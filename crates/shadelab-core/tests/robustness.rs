@@ -291,11 +291,15 @@ fn impossible_cameras_are_errors() {
             CameraError::EyeAtTarget,
         ),
         (
+            // Apart, but too little for a view direction in f32: the error
+            // says by how much (1e-30 on two axes).
             Camera {
                 target: cam.eye + Vec3::splat(1e-30),
                 ..cam
             },
-            CameraError::EyeAtTarget,
+            CameraError::EyeTooClose {
+                distance: 1e-30 * std::f32::consts::SQRT_2,
+            },
         ),
         (
             Camera {

@@ -848,17 +848,18 @@ impl SceneFile {
             .collect::<Result<Vec<_>, _>>()?;
 
         let m = &self.material;
-        let default_color = rgb("material", [255, 60, 60])?;
+        // The core's default material (one declaration: `Material::default`).
+        let defaults = Material::default();
         let file_kd = file_material.and_then(|f| f.kd);
         let file_ka = file_material.and_then(|f| f.ka.or(f.kd));
         let material = Material {
             ka: match m.ka {
                 Some(c) => rgb("material.ka", c)?,
-                None => file_ka.unwrap_or(default_color),
+                None => file_ka.unwrap_or(defaults.ka),
             },
             kd: match m.kd {
                 Some(c) => rgb("material.kd", c)?,
-                None => file_kd.unwrap_or(default_color),
+                None => file_kd.unwrap_or(defaults.kd),
             },
             ks: rgb("material.ks", m.ks.unwrap_or([255, 255, 255]))?,
             shininess: non_negative("material.shininess", m.shininess.unwrap_or(32.0))?,

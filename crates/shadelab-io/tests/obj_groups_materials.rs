@@ -409,7 +409,7 @@ fn scene_material(scene_toml: &str, dir: &Path) -> (Rgb, Rgb) {
 fn the_file_material_fills_in_what_the_scene_leaves_unset() {
     let blue_ka = Rgb::new(0.2, 0.2, 0.6);
     let blue_kd = Rgb::new(0.2, 0.6, 1.0);
-    let default = Rgb8::new(255, 60, 60).to_rgb();
+    let default = Rgb8::new(200, 60, 60).to_rgb();
     let (dir, _) = files(
         &format!("mtllib lib.mtl\n{TRIANGLE}usemtl blue\nf 1 2 3\n"),
         &[("lib.mtl", MTL)],

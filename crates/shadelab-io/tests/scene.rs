@@ -279,7 +279,7 @@ fn empty_file_gets_the_defaults() {
     // Ambient: white at 0.2.
     assert!(close(scene.ambient, Rgb::splat(0.2)), "{:?}", scene.ambient);
 
-    let red = Rgb::new(1.0, 60.0 / 255.0, 60.0 / 255.0);
+    let red = Rgb::new(200.0 / 255.0, 60.0 / 255.0, 60.0 / 255.0);
     assert!(close(scene.material.ka, red), "{:?}", scene.material.ka);
     assert!(close(scene.material.kd, red), "{:?}", scene.material.kd);
     assert_eq!(scene.material.ks, Rgb::WHITE);
@@ -696,4 +696,45 @@ fn specular_term_by_name() {
     }
     let err = SceneFile::parse("[render]\nspecular = \"blinn\"\n", "s.toml").unwrap_err();
     assert!(err.to_string().contains("specular"), "{err}");
+}
+
+/// The default material does not clip outside the specular highlight: with
+/// every built-in model, under the default camera and lights, by every
+/// method, no channel reaches 255 once the specular term is off, and the
+/// highlight alone reaches it when it is on (issue: a red that clipped over a
+/// large area hid the methods' differences).
+#[test]
+fn the_default_material_clips_only_in_the_highlight() {
+    for model in shadelab_core::BUILTIN_MODELS {
+        for shading in ["flat", "gouraud", "phong"] {
+            let base = format!(
+                "[model]\nsource = \"{}\"\n[render]\nwidth = 96\nheight = 96\nshading = \"{shading}\"\n",
+                model.name
+            );
+            let (scene, options) = resolved(&format!("{base}[material]\nks = [0, 0, 0]\n"));
+            let image = shadelab_core::render(&scene, &options).unwrap().0;
+            let brightest = image
+                .pixels()
+                .iter()
+                .map(|p| p.0.into_iter().max().unwrap())
+                .max()
+                .unwrap();
+            assert!(
+                brightest < 255,
+                "{} {shading}: a channel clips without the specular term",
+                model.name
+            );
+            assert!(
+                brightest > 100,
+                "{} {shading}: the lit side is drawn ({brightest})",
+                model.name
+            );
+        }
+    }
+    // With the default specular term, Phong's highlight does reach white on the sphere.
+    let (scene, options) = resolved(
+        "[model]\nsource = \"sphere\"\n[render]\nwidth = 96\nheight = 96\nshading = \"phong\"\n",
+    );
+    let image = shadelab_core::render(&scene, &options).unwrap().0;
+    assert!(image.pixels().iter().any(|p| p.0[1] >= 250));
 }
