@@ -129,7 +129,7 @@ fn a_material_library_outside_the_folder_or_not_a_file_is_passed_over_with_a_war
     let model = dir.path().join("model/tetra.obj");
     // Inside: read and used.
     write(dir.path(), "model/lib.mtl", "newmtl green\nKd 0 1 0\n");
-    write(dir.path(), "model/tetra.obj", &tetra_with_material());
+    write(dir.path(), "model/tetra.obj", tetra_with_material());
     let out = render_model(dir.path(), &model);
     assert_ok(&out);
     assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
