@@ -595,7 +595,7 @@ fn a_mesh_too_large_for_a_workers_share_of_memory_is_an_error_row() {
             "--jobs",
             "16",
             "--progress",
-            "quiet",
+            "none",
         ],
     );
     assert_ok(&out);
