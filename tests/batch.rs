@@ -1,36 +1,14 @@
 //! `shadelab batch` end to end: the real binary in temporary directories,
 //! killed mid-run, sharded, fed broken meshes, CSV and JSON Lines.
 
+mod support;
+
+use support::*;
+
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_shadelab"))
-}
-
-fn run(dir: &Path, args: &[&str]) -> Output {
-    bin()
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-fn assert_ok(out: &Output) {
-    assert!(
-        out.status.success(),
-        "exit {:?}, stderr:\n{}",
-        out.status.code(),
-        stderr(out)
-    );
-    assert!(!stderr(out).contains("panicked"), "{}", stderr(out));
-}
 
 /// A UV sphere as OBJ text: `slices` around, `slices / 2` stacks, triangles.
 fn sphere_obj(slices: u32) -> String {
@@ -445,7 +423,7 @@ fn a_run_killed_midway_resumes_without_partial_images_or_repeated_work() {
     ];
     let total = meshes * 18;
 
-    let mut child = bin()
+    let mut child = Command::new(bin())
         .args(args)
         .current_dir(dir)
         .stdout(Stdio::null())

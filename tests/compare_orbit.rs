@@ -2,32 +2,12 @@
 //! PNG, and `--lang` on the commands that print prose. Each test runs the
 //! real binary in a fresh temporary directory.
 
+mod support;
+
+use support::*;
+
 use std::path::Path;
 use std::process::{Command, Output};
-
-fn run(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shadelab"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs")
-}
-
-fn ok(out: &Output) {
-    assert!(
-        out.status.success(),
-        "exit {:?}\nstdout: {}\nstderr: {}",
-        out.status.code(),
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-}
-
-fn fails_with(out: &Output, code: i32, text: &str) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(code), "stderr: {stderr}");
-    assert!(stderr.contains(text), "stderr lacks {text:?}: {stderr}");
-}
 
 /// An animated PNG's frames, decoded: (width, height, frames as RGB, delay of each in ms).
 struct Apng {
@@ -105,7 +85,7 @@ fn an_orbit_is_an_animated_png_of_the_compare_sheets_at_each_turn() {
             "orbit.apng",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
         stderr.contains("wrote 8 frames of 200x76 pixels, 50 ms each"),
@@ -124,7 +104,7 @@ fn an_orbit_is_an_animated_png_of_the_compare_sheets_at_each_turn() {
     // Frame k is `compare` at yaw 360·k/8: the same sheet, pixel for pixel.
     for (k, yaw) in [(0, "0"), (1, "45"), (3, "135"), (7, "315")] {
         let png = format!("still-{k}.png");
-        ok(&run(
+        assert_ok(&run(
             dir.path(),
             &[
                 "compare", "--model", "cube", "--size", "64x48", "--pitch", "20", "--yaw", yaw,
@@ -149,11 +129,11 @@ fn an_orbit_starts_from_the_scene_yaw_and_keeps_its_other_settings() {
         "[model]\nsource = \"torus\"\n[render]\nwidth = 40\nheight = 40\nyaw = 30.0\nbackground = [0, 0, 90]\n",
     )
     .unwrap();
-    ok(&run(
+    assert_ok(&run(
         dir.path(),
         &["compare", "scene.toml", "--orbit", "4", "-o", "t.png"],
     ));
-    ok(&run(
+    assert_ok(&run(
         dir.path(),
         &["compare", "scene.toml", "-o", "still.png"],
     ));
@@ -188,29 +168,29 @@ fn an_orbit_refuses_other_formats_and_bad_counts_and_leaves_files_alone() {
             "keep.webp",
         ],
     );
-    fails_with(&out, 2, "animated WebP is not supported");
-    fails_with(&out, 2, "keep.apng");
+    assert_fails(&out, 2, &["animated WebP is not supported"]);
+    assert_fails(&out, 2, &["keep.apng"]);
     assert_eq!(
         std::fs::read(dir.path().join("keep.webp")).unwrap(),
         b"mine"
     );
-    fails_with(
+    assert_fails(
         &run(
             dir.path(),
             &["compare", "--size", "32x32", "--orbit", "4", "-o", "a.gif"],
         ),
         2,
-        "name the file .apng",
+        &["name the file .apng"],
     );
-    fails_with(
+    assert_fails(
         &run(
             dir.path(),
             &["compare", "--size", "32x32", "--orbit", "0", "-o", "a.apng"],
         ),
         2,
-        "--orbit must be 1..=720",
+        &["--orbit must be 1..=720"],
     );
-    fails_with(
+    assert_fails(
         &run(
             dir.path(),
             &[
@@ -218,7 +198,7 @@ fn an_orbit_refuses_other_formats_and_bad_counts_and_leaves_files_alone() {
             ],
         ),
         2,
-        "--delay must be at least 1 ms",
+        &["--delay must be at least 1 ms"],
     );
     // `--delay` means nothing without an orbit.
     let out = run(
@@ -232,7 +212,7 @@ fn an_orbit_refuses_other_formats_and_bad_counts_and_leaves_files_alone() {
         dir.path(),
         &["compare", "--size", "32x32", "--orbit", "2", "-o", "d.apng"],
     );
-    fails_with(&out, 1, "not a regular file");
+    assert_fails(&out, 1, &["not a regular file"]);
     assert!(dir.path().join("d.apng").is_dir());
     // Nothing is left behind: no temporary file, no partial output.
     let left: Vec<_> = std::fs::read_dir(dir.path())
@@ -257,7 +237,7 @@ fn every_command_that_prints_prose_takes_lang() {
             "quad", "--lang", "ru", "--angles", "0,45", "--size", "31", "-o", "q.png",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     assert!(stdout(&out).contains("центр, целиком"), "{}", stdout(&out));
 
     let out = run(
@@ -266,7 +246,7 @@ fn every_command_that_prints_prose_takes_lang() {
             "compare", "--lang", "ru", "--model", "cube", "--size", "48x48", "-o", "c.png",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     assert!(
         stderr(&out).contains("растеризовано многоугольников"),
         "{}",
@@ -274,7 +254,7 @@ fn every_command_that_prints_prose_takes_lang() {
     );
     assert!(stderr(&out).starts_with("Плоская"), "{}", stderr(&out));
     // The labels are drawn in the language: not the English sheet.
-    ok(&run(
+    assert_ok(&run(
         dir.path(),
         &[
             "compare", "--model", "cube", "--size", "48x48", "-o", "e.png",
@@ -300,7 +280,7 @@ fn every_command_that_prints_prose_takes_lang() {
             "render", "--lang", "cs", "--model", "cube", "--size", "32x32", "-o", "r.png",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     assert!(
         stderr(&out).contains("vystínované pixely"),
         "{}",
@@ -313,7 +293,7 @@ fn every_command_that_prints_prose_takes_lang() {
             "cost", "--lang", "sk", "--model", "cube", "--size", "32x32", "--runs", "1",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     assert!(
         stdout(&out).contains("rasterizátor: dlaždicový"),
         "{}",
@@ -322,7 +302,7 @@ fn every_command_that_prints_prose_takes_lang() {
     assert!(stdout(&out).contains("Konštantné"), "{}", stdout(&out));
 
     let out = run(dir.path(), &["models", "--lang", "cs"]);
-    ok(&out);
+    assert_ok(&out);
     assert!(
         stdout(&out).contains("konvička z Utahu"),
         "{}",
@@ -331,7 +311,7 @@ fn every_command_that_prints_prose_takes_lang() {
 
     // English stays as it was, a polygon count never reads "1 polygons".
     let out = run(dir.path(), &["models"]);
-    ok(&out);
+    assert_ok(&out);
     assert!(stdout(&out).contains("the Utah teapot from Newell's 32 Bézier patches"));
     let out = run(
         dir.path(),
@@ -353,7 +333,7 @@ fn every_command_that_prints_prose_takes_lang() {
             "render", "--model", "one.obj", "--size", "16x16", "-o", "one.png",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     assert!(
         stderr(&out).contains("polygons rasterized: 1 "),
         "{}",

@@ -2,12 +2,22 @@
 //! under `tests/golden/`. They guard against unintended change; correctness
 //! itself is proven against independent computations in the core's tests.
 //!
+//! Two sets: a few hand-picked scenes (`tests/golden/*.png`, drawn by the
+//! scanline rasterizer, the tiled one within 1/255 of them), and the matrix
+//! that locks the pixels before any refactoring (`tests/golden/matrix/`):
+//! every built-in model × the three methods, and every non-default option ×
+//! the three methods, each drawn by **both** rasterizers and kept apart. The
+//! scanline images must stay byte-identical; the tiled ones within 1/255 per
+//! channel, which also keeps their coverage identical (every covered pixel
+//! has at least the ambient term, 0.2 × 200 = 40 in red, so a pixel covered
+//! in one image and background in the other differs by far more).
+//!
 //! After a deliberate change, regenerate them with
 //! `BLESS=1 cargo test --release --test golden` and look at every new image.
 
 use std::path::{Path, PathBuf};
 
-use shadelab_core::{render, Image, Rasterizer, Rgb8};
+use shadelab_core::{render, Image, Rasterizer, Rgb8, BUILTIN_MODELS};
 use shadelab_io::{read_png, write_png, SceneFile};
 
 /// (name, scene) pairs; every scene is small so the set stays quick.
@@ -45,12 +55,17 @@ fn render_case(scene: &str, rasterizer: Rasterizer) -> Image {
     render(&scene, &options).expect("golden scene renders").0
 }
 
-/// Where `actual` and `expected` first differ, or `None`.
-fn first_difference(actual: &Image, expected: &Image) -> Option<(u32, u32, Rgb8, Rgb8)> {
+/// Where `actual` and `expected` first differ by more than `tolerance` in a
+/// channel, or `None`.
+fn first_difference(
+    actual: &Image,
+    expected: &Image,
+    tolerance: u8,
+) -> Option<(u32, u32, Rgb8, Rgb8)> {
     (0..actual.height())
         .flat_map(|y| (0..actual.width()).map(move |x| (x, y)))
         .map(|(x, y)| (x, y, actual.pixel(x, y), expected.pixel(x, y)))
-        .find(|(_, _, a, e)| a != e)
+        .find(|(_, _, a, e)| (0..3).any(|k| a.0[k].abs_diff(e.0[k]) > tolerance))
 }
 
 /// An image that is black where the two agree and shows the difference, amplified, elsewhere.
@@ -66,51 +81,170 @@ fn diff_image(actual: &Image, expected: &Image) -> Image {
     diff
 }
 
+/// Compares `actual` with the golden image at `path` (or writes it when
+/// blessing): every channel within `tolerance`. A failure is described, and
+/// the actual image and an amplified difference are written to a temporary
+/// folder for a look.
+fn check(name: &str, path: &Path, actual: &Image, tolerance: u8, bless: bool) -> Option<String> {
+    if bless {
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        write_png(path, actual).expect("write golden image");
+        return None;
+    }
+    let expected = match read_png(path) {
+        Ok(image) => image,
+        Err(e) => {
+            return Some(format!(
+                "{}: {e} (run with BLESS=1 to create it)",
+                path.display()
+            ))
+        }
+    };
+    let same_size = (actual.width(), actual.height()) == (expected.width(), expected.height());
+    let difference = if same_size {
+        first_difference(actual, &expected, tolerance)
+    } else {
+        None
+    };
+    if same_size && difference.is_none() {
+        return None;
+    }
+    let out = std::env::temp_dir().join(format!("shadelab-golden-{name}"));
+    std::fs::create_dir_all(&out).unwrap();
+    write_png(&out.join("actual.png"), actual).unwrap();
+    if same_size {
+        write_png(&out.join("diff.png"), &diff_image(actual, &expected)).unwrap();
+    }
+    Some(format!(
+        "{name}: {} (actual and diff written to {})",
+        match difference {
+            Some((x, y, a, e)) => format!("first difference at ({x}, {y}): {a:?} != {e:?}"),
+            None => format!(
+                "size {}x{} != {}x{}",
+                actual.width(),
+                actual.height(),
+                expected.width(),
+                expected.height()
+            ),
+        },
+        out.display()
+    ))
+}
+
 #[test]
 fn golden_images_match() {
     let bless = std::env::var_os("BLESS").is_some();
-    let mut failures = Vec::new();
-    for (name, scene) in CASES {
-        let actual = render_case(scene, Rasterizer::Scanline);
-        let path = golden_dir().join(format!("{name}.png"));
-        if bless {
-            write_png(&path, &actual).expect("write golden image");
-            continue;
-        }
-        let expected = read_png(&path)
-            .unwrap_or_else(|e| panic!("{}: {e} (run with BLESS=1 to create it)", path.display()));
-        let same_size = (actual.width(), actual.height()) == (expected.width(), expected.height());
-        let difference = if same_size {
-            first_difference(&actual, &expected)
-        } else {
-            None
-        };
-        if !same_size || difference.is_some() {
-            let out = std::env::temp_dir().join(format!("shadelab-golden-{name}"));
-            std::fs::create_dir_all(&out).unwrap();
-            write_png(&out.join("actual.png"), &actual).unwrap();
-            if same_size {
-                write_png(&out.join("diff.png"), &diff_image(&actual, &expected)).unwrap();
-            }
-            failures.push(format!(
-                "{name}: {} (actual and diff written to {})",
-                match difference {
-                    Some((x, y, a, e)) => format!("first difference at ({x}, {y}): {a:?} != {e:?}"),
-                    None => format!(
-                        "size {}x{} != {}x{}",
-                        actual.width(),
-                        actual.height(),
-                        expected.width(),
-                        expected.height()
-                    ),
-                },
-                out.display()
-            ));
-        }
-    }
+    let failures: Vec<String> = CASES
+        .iter()
+        .filter_map(|(name, scene)| {
+            let actual = render_case(scene, Rasterizer::Scanline);
+            check(
+                name,
+                &golden_dir().join(format!("{name}.png")),
+                &actual,
+                0,
+                bless,
+            )
+        })
+        .collect();
     assert!(
         failures.is_empty(),
         "golden images differ:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// The options that differ from the defaults, one at a time, as scene-file
+/// lines: (name, `[model]` lines, `[render]` lines, `[camera]` lines).
+const OPTIONS: &[(&str, &str, &str, &str)] = &[
+    ("blinn", "", "specular = \"blinn-phong\"\n", ABOVE),
+    ("fixed-point", "", "fixed_point_bits = 8\n", ABOVE),
+    ("palette", "", "palette_shades = 8\n", ABOVE),
+    ("area-weights", "normals = \"area\"\n", "", ABOVE),
+    (
+        "angle-weights-crease",
+        "normals = \"angle\"\ncrease_angle = 40\n",
+        "",
+        ABOVE,
+    ),
+    ("uniform-weights", "normals = \"uniform\"\n", "", ABOVE),
+    (
+        "screen-interpolation",
+        "",
+        "interpolation = \"screen\"\n",
+        ABOVE,
+    ),
+    ("no-cull", "", "cull_backfaces = false\n", INSIDE),
+    ("whole-polygons", "", "polygons = \"whole\"\n", ABOVE),
+    ("gouraud-specular", "", "gouraud_specular = true\n", ABOVE),
+];
+
+/// The torus from above and aside, its hole in view.
+const ABOVE: &str = "eye = [1.2, 2.0, 2.6]\n";
+
+/// Inside the torus's tube, looking along it: every face in view is a back
+/// face, so with culling the picture would be black.
+const INSIDE: &str =
+    "eye = [1.0, 0.0, 0.0]\ntarget = [0.7, 0.1, -0.7]\nfov_y = 90\nnear = 0.05\nfar = 10\n";
+
+/// The matrix: (name, scene) for every built-in model × method (framed,
+/// turned 30° and tilted 25°), and every option of [`OPTIONS`] × method on
+/// the torus (curved, quads, silhouettes).
+fn matrix() -> Vec<(String, String)> {
+    let size = "width = 96\nheight = 72\n";
+    let mut cases = Vec::new();
+    for method in ["flat", "gouraud", "phong"] {
+        for model in BUILTIN_MODELS {
+            let name = format!("{}-{method}", model.name);
+            let scene = format!(
+                "[model]\nsource = \"{}\"\n[render]\n{size}yaw = 30\npitch = 25\n\
+                 shading = \"{method}\"\n",
+                model.name
+            );
+            cases.push((name, scene));
+        }
+        for (option, model_lines, render_lines, camera_lines) in OPTIONS {
+            let name = format!("torus-{option}-{method}");
+            let scene = format!(
+                "[model]\nsource = \"torus\"\ndetail = 12\n{model_lines}[render]\n{size}\
+                 shading = \"{method}\"\n{render_lines}[camera]\n{camera_lines}"
+            );
+            cases.push((name, scene));
+        }
+    }
+    cases
+}
+
+/// The options of [`OPTIONS`] only the scanline rasterizer draws (the tiled
+/// one refuses them).
+const SCANLINE_ONLY: &[&str] = &["fixed-point", "palette", "whole-polygons"];
+
+/// The lock on the pixels: both rasterizers, every model, method and option.
+#[test]
+fn the_matrix_of_models_methods_options_and_rasterizers_is_unchanged() {
+    let bless = std::env::var_os("BLESS").is_some();
+    let dir = golden_dir().join("matrix");
+    let mut failures = Vec::new();
+    let cases = matrix();
+    for (name, scene) in &cases {
+        for (rasterizer, label, tolerance) in [
+            (Rasterizer::Scanline, "scanline", 0),
+            (Rasterizer::Tiled, "tiled", 1),
+        ] {
+            if rasterizer == Rasterizer::Tiled && SCANLINE_ONLY.iter().any(|o| name.contains(o)) {
+                continue;
+            }
+            let actual = render_case(scene, rasterizer);
+            let name = format!("{name}-{label}");
+            let path = dir.join(format!("{name}.png"));
+            failures.extend(check(&name, &path, &actual, tolerance, bless));
+        }
+    }
+    assert_eq!(cases.len(), 3 * (BUILTIN_MODELS.len() + OPTIONS.len()));
+    assert!(
+        failures.is_empty(),
+        "{} of the matrix images differ:\n{}",
+        failures.len(),
         failures.join("\n")
     );
 }

@@ -2,13 +2,13 @@
 //! 16 and 17): each ends quickly in a clear error within bounded memory, or
 //! is simply read, as CR-only line ends now are.
 
-mod hostile;
+mod support;
 
 use std::path::Path;
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-use hostile::*;
+use support::*;
 
 const SOON: Duration = Duration::from_secs(30);
 

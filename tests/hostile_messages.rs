@@ -4,9 +4,9 @@
 //! length and empty values name their key; negative numbers say the range
 //! allowed; a message repeats the value the user gave.
 
-mod hostile;
+mod support;
 
-use hostile::*;
+use support::*;
 
 /// Runs `render` with the scene `text` (and `args`), expecting exit 2.
 fn scene_error(text: &str, args: &[&str]) -> String {

@@ -4,12 +4,12 @@
 //! `-` is standard output, a full disk is an error and a closed pipe is not,
 //! and a file name of any allowed length can be written.
 
-mod hostile;
+mod support;
 
 use std::os::unix::fs::FileTypeExt;
 use std::process::{Command, Stdio};
 
-use hostile::*;
+use support::*;
 
 const SMALL: &[&str] = &["--model", "cube", "--size", "16x16"];
 

@@ -4,13 +4,13 @@
 //! is passed over with a warning; scene and model inputs that are FIFOs,
 //! devices or directories are refused at once, and every read is capped.
 
-mod hostile;
+mod support;
 
 use std::path::Path;
 use std::process::Stdio;
 use std::time::Duration;
 
-use hostile::*;
+use support::*;
 
 const SOON: Duration = Duration::from_secs(30);
 

@@ -3,14 +3,14 @@
 //! head has a deadline, and only requests naming this server in their
 //! `Host` header are answered.
 
-mod hostile;
+mod support;
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
 use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
 
-use hostile::*;
+use support::*;
 
 /// A running `shadelab view`, killed when dropped.
 struct Viewer {

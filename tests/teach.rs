@@ -1,44 +1,12 @@
 //! The teaching subcommands end to end: the real binary in a temporary
 //! directory, its text and its pictures read back.
 
+mod support;
+
+use support::*;
+
 use std::collections::BTreeSet;
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn run(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shadelab"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs")
-}
-
-fn stdout(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-fn ok(out: &Output) {
-    assert!(
-        out.status.success(),
-        "exit {:?}\nstdout:\n{}\nstderr:\n{}",
-        out.status.code(),
-        stdout(out),
-        stderr(out)
-    );
-}
-
-fn fails_with(out: &Output, code: i32, text: &str) {
-    assert_eq!(out.status.code(), Some(code), "stderr: {}", stderr(out));
-    assert!(
-        stderr(out).contains(text),
-        "expected {text:?} in: {}",
-        stderr(out)
-    );
-}
 
 /// (width, height, RGB bytes) of a PNG.
 fn png(path: &Path) -> (u32, u32, Vec<u8>) {
@@ -73,7 +41,7 @@ fn explain_prints_the_formulas_with_the_numbers() {
         "whole",
     ];
     let out = run(dir.path(), &args);
-    ok(&out);
+    assert_ok(&out);
     let text = stdout(&out);
     for needle in [
         "Pixel (60, 40)",
@@ -108,7 +76,7 @@ fn explain_prints_the_formulas_with_the_numbers() {
             "g.png",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     let (w, _, rgb) = png(&dir.path().join("g.png"));
     let at = ((40 * w + 60) * 3) as usize;
     let colour = format!("gives ({}, {}, {})", rgb[at], rgb[at + 1], rgb[at + 2]);
@@ -135,7 +103,7 @@ fn explain_prints_the_formulas_with_the_numbers() {
             "gouraud",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     let text = stdout(&out);
     assert!(
         text.contains("Закраска по Гуро") && !text.contains("Фонгу"),
@@ -148,15 +116,19 @@ fn explain_prints_the_formulas_with_the_numbers() {
                 "explain", "--model", "torus", "--pixel", "240,240", "--lang", lang,
             ],
         );
-        ok(&out);
+        assert_ok(&out);
         assert!(stdout(&out).contains("Gouraudovo"), "{lang}");
     }
-    fails_with(
+    assert_fails(
         &run(dir.path(), &["explain", "--pixel", "480,3"]),
         2,
-        "outside the 480x480 image",
+        &["outside the 480x480 image"],
     );
-    fails_with(&run(dir.path(), &["explain", "--pixel", "3"]), 2, "pixel");
+    assert_fails(
+        &run(dir.path(), &["explain", "--pixel", "3"]),
+        2,
+        &["pixel"],
+    );
 }
 
 #[test]
@@ -169,7 +141,7 @@ fn profile_writes_a_plot_and_reports_the_edges() {
             "-o", "p.png", "--table",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     let text = stdout(&out);
     assert!(
         text.contains("Exact surface") && text.contains("polygon edges crossed"),
@@ -191,7 +163,7 @@ fn profile_writes_a_plot_and_reports_the_edges() {
         assert!(c.contains(&curve), "curve colour {curve:?} missing");
     }
     // A line across the image, and a model without an exact surface.
-    ok(&run(
+    assert_ok(&run(
         dir.path(),
         &[
             "profile",
@@ -205,7 +177,7 @@ fn profile_writes_a_plot_and_reports_the_edges() {
             "l.png",
         ],
     ));
-    fails_with(
+    assert_fails(
         &run(
             dir.path(),
             &[
@@ -213,7 +185,7 @@ fn profile_writes_a_plot_and_reports_the_edges() {
             ],
         ),
         2,
-        "outside",
+        &["outside"],
     );
 }
 
@@ -226,7 +198,7 @@ fn errors_writes_heat_maps_and_ranks_the_methods() {
             "errors", "--model", "sphere", "--detail", "12", "--size", "160x160", "-o", "e.png",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     let text = stdout(&out);
     let mean = |method: &str| -> f64 {
         let line = text.lines().find(|l| l.starts_with(method)).unwrap();
@@ -238,15 +210,15 @@ fn errors_writes_heat_maps_and_ranks_the_methods() {
     );
     let (w, h, _) = png(&dir.path().join("e.png"));
     assert_eq!((w, h), (4 * 160 + 3 * 6 + 90, 34 + 160 + 30));
-    fails_with(
+    assert_fails(
         &run(dir.path(), &["errors", "--model", "teapot", "-o", "t.png"]),
         2,
-        "no exact surface",
+        &["no exact surface"],
     );
-    fails_with(
+    assert_fails(
         &run(dir.path(), &["errors", "--scale", "-1", "-o", "t.png"]),
         2,
-        "--scale must be a positive number",
+        &["--scale must be a positive number"],
     );
     assert!(!dir.path().join("t.png").exists());
 }
@@ -268,7 +240,7 @@ fn accuracy_prints_a_table_and_plots_it() {
             "a.png",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     let text = stdout(&out);
     let rows: Vec<&str> = text
         .lines()
@@ -277,10 +249,10 @@ fn accuracy_prints_a_table_and_plots_it() {
     assert_eq!(rows.len(), 3, "{text}");
     let (w, h, _) = png(&dir.path().join("a.png"));
     assert_eq!((w, h), (820, 560));
-    fails_with(
+    assert_fails(
         &run(dir.path(), &["accuracy", "--model", "cube"]),
         2,
-        "no exact surface",
+        &["no exact surface"],
     );
 }
 
@@ -291,7 +263,7 @@ fn quad_and_cost() {
         dir.path(),
         &["quad", "-o", "q.png", "--angles", "0,45", "--size", "61"],
     );
-    ok(&out);
+    assert_ok(&out);
     let text = stdout(&out);
     assert!(text.contains("0.2500") && text.contains("0.5000"), "{text}");
     assert!(dir.path().join("q.png").exists());
@@ -301,7 +273,7 @@ fn quad_and_cost() {
             "cost", "--model", "teapot", "--size", "160x120", "--runs", "2",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     let text = stdout(&out);
     for m in ["Flat", "Gouraud", "Phong", "per vertex"] {
         assert!(text.contains(m), "{text}");
@@ -319,13 +291,13 @@ fn overlays_draw_on_render_and_compare() {
         .chain(&base)
         .copied()
         .collect();
-    ok(&run(dir.path(), &plain));
+    assert_ok(&run(dir.path(), &plain));
     let wire: Vec<&str> = ["render", "-o", "wire.png", "--overlay", "wireframe,light"]
         .iter()
         .chain(&base)
         .copied()
         .collect();
-    ok(&run(dir.path(), &wire));
+    assert_ok(&run(dir.path(), &wire));
     let (_, _, a) = png(&dir.path().join("plain.png"));
     let (_, _, b) = png(&dir.path().join("wire.png"));
     let wire_pixels = b.chunks(3).filter(|p| *p == [255, 230, 90]).count();
@@ -336,11 +308,11 @@ fn overlays_draw_on_render_and_compare() {
         .chain(&base)
         .copied()
         .collect();
-    ok(&run(dir.path(), &cmp));
-    fails_with(
+    assert_ok(&run(dir.path(), &cmp));
+    assert_fails(
         &run(dir.path(), &["render", "-o", "x.png", "--overlay", "grid"]),
         2,
-        "unknown overlay",
+        &["unknown overlay"],
     );
 }
 
@@ -367,13 +339,13 @@ fn palette_and_fixed_point_flags_and_scene_keys() {
             "p.png",
         ],
     );
-    ok(&out);
+    assert_ok(&out);
     let (_, _, rgb) = png(&dir.path().join("p.png"));
     let mut c = colours(&rgb);
     c.remove(&[0, 0, 0]);
     // Six shades of the default material colour; the darkest is black, like the background.
     assert_eq!(c.len(), 5, "{c:?}");
-    fails_with(
+    assert_fails(
         &run(
             dir.path(),
             &[
@@ -387,17 +359,17 @@ fn palette_and_fixed_point_flags_and_scene_keys() {
             ],
         ),
         2,
-        "render.palette_shades",
+        &["render.palette_shades"],
     );
-    fails_with(
+    assert_fails(
         &run(
             dir.path(),
             &["render", "--fixed-point", "40", "-o", "x.png"],
         ),
         2,
-        "--fixed-point <BITS>': must be a whole number in 1..=30, got \"40\"",
+        &["--fixed-point <BITS>': must be a whole number in 1..=30, got \"40\""],
     );
-    fails_with(
+    assert_fails(
         &run(
             dir.path(),
             &[
@@ -411,15 +383,15 @@ fn palette_and_fixed_point_flags_and_scene_keys() {
             ],
         ),
         2,
-        "palette",
+        &["palette"],
     );
     std::fs::write(
         dir.path().join("s.toml"),
         "[model]\nsource = \"sphere\"\n[render]\nwidth = 80\nheight = 80\nfixed_point_bits = 3\nshading = \"gouraud\"\n",
     )
     .unwrap();
-    ok(&run(dir.path(), &["render", "s.toml", "-o", "f.png"]));
-    ok(&run(
+    assert_ok(&run(dir.path(), &["render", "s.toml", "-o", "f.png"]));
+    assert_ok(&run(
         dir.path(),
         &["render", "s.toml", "--fixed-point", "24", "-o", "g.png"],
     ));

@@ -484,34 +484,28 @@ impl Run<'_> {
                     .map_err(|e| format!("cannot write {}: {e}", out.display()))
             });
             let ms = start.elapsed().as_secs_f64() * 1e3;
-            match result {
-                Ok(()) => {
-                    self.row(
-                        entry,
-                        id,
-                        view,
-                        mode,
-                        name,
-                        Some(ms),
-                        Some(triangles),
-                        Status::Ok,
-                        None,
-                    )?;
-                    tally.written += 1;
-                }
+            let (ms, status, message) = match result {
+                Ok(()) => (Some(ms), Status::Ok, None),
                 Err(e) => {
                     let message = escape(&format!("{}:{}: {e}", self.manifest_name(), entry.line));
-                    self.row(
-                        entry,
-                        id,
-                        view,
-                        mode,
-                        name,
-                        None,
-                        Some(triangles),
-                        Status::Error,
-                        Some(&message),
-                    )?;
+                    (None, Status::Error, Some(message))
+                }
+            };
+            let tri = Some(triangles);
+            self.row(
+                entry,
+                id,
+                view,
+                mode,
+                name,
+                ms,
+                tri,
+                status,
+                message.as_deref(),
+            )?;
+            match message {
+                None => tally.written += 1,
+                Some(message) => {
                     tally.failed += 1;
                     tally.first_error.get_or_insert(message);
                 }

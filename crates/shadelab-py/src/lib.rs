@@ -15,7 +15,7 @@ use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use shadelab_batch::{BatchConfig, PreparedMesh, Progress, View};
-use shadelab_core::{coverage, render, Image, Mesh, Renderer, Rgb8};
+use shadelab_core::{coverage, render, Image, Mesh, RenderOptions, Renderer, Rgb8, Scene};
 use shadelab_io::{LoadError, PngCompression, SceneError, SceneFile};
 
 /// The exception for a scene or model error, as the command reports it.
@@ -101,6 +101,23 @@ fn to_numpy(
 
 type Frame = (Vec<u8>, u32, u32, usize);
 
+/// A rendered image ready for [`to_numpy`]: RGB, or RGBA with the scene's
+/// coverage as alpha.
+fn frame(image: Image, scene: &Scene, options: &RenderOptions, alpha: bool) -> PyResult<Frame> {
+    let cover = if alpha {
+        Some(coverage(scene, options).map_err(|e| PyValueError::new_err(e.to_string()))?)
+    } else {
+        None
+    };
+    let channels = if alpha { 4 } else { 3 };
+    Ok((
+        pixels(&image, cover.as_deref()),
+        image.height(),
+        image.width(),
+        channels,
+    ))
+}
+
 /// Renders a model named as `shadelab render --model` names it (a built-in
 /// model or a mesh file), or the scene file's own model when `source` is None.
 #[pyfunction]
@@ -125,24 +142,13 @@ fn render_source<'py>(
         });
         file.model.detail = file.model.detail.filter(|_| is_builtin);
     }
-    let frame: PyResult<Frame> = py.detach(|| {
+    let result: PyResult<Frame> = py.detach(|| {
         let (scene, options) = file.resolve(&base_dir).map_err(scene_error)?;
         let (image, _) =
             render(&scene, &options).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        let cover = if alpha {
-            Some(coverage(&scene, &options).map_err(|e| PyValueError::new_err(e.to_string()))?)
-        } else {
-            None
-        };
-        let channels = if alpha { 4 } else { 3 };
-        Ok((
-            pixels(&image, cover.as_deref()),
-            image.height(),
-            image.width(),
-            channels,
-        ))
+        frame(image, &scene, &options, alpha)
     });
-    let (bytes, h, w, c) = frame?;
+    let (bytes, h, w, c) = result?;
     to_numpy(py, bytes, h, w, c)
 }
 
@@ -160,7 +166,7 @@ fn render_arrays<'py>(
 ) -> PyResult<Bound<'py, PyArray3<u8>>> {
     let (file, _) = settings(scene.as_deref(), settings_json)?;
     let mesh = mesh_from_arrays(&vertices, &faces)?;
-    let frame: PyResult<Frame> = py.detach(|| {
+    let result: PyResult<Frame> = py.detach(|| {
         let mut prepared = PreparedMesh::from_mesh(&file, mesh).map_err(scene_error)?;
         let options = *prepared.options();
         let mut image = Image::filled(1, 1, Rgb8::default());
@@ -172,23 +178,9 @@ fn render_arrays<'py>(
         prepared
             .render(&mut Renderer::new(), &view, options.shading, &mut image)
             .map_err(PyValueError::new_err)?;
-        let cover = if alpha {
-            Some(
-                coverage(prepared.scene(), &options)
-                    .map_err(|e| PyValueError::new_err(e.to_string()))?,
-            )
-        } else {
-            None
-        };
-        let channels = if alpha { 4 } else { 3 };
-        Ok((
-            pixels(&image, cover.as_deref()),
-            image.height(),
-            image.width(),
-            channels,
-        ))
+        frame(image, prepared.scene(), &options, alpha)
     });
-    let (bytes, h, w, c) = frame?;
+    let (bytes, h, w, c) = result?;
     to_numpy(py, bytes, h, w, c)
 }
 

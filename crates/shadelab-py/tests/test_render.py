@@ -85,7 +85,11 @@ def test_bad_input_raises_with_the_commands_message(cli, tmp_path):
 
     with pytest.raises(ValueError) as e:
         shadelab.render("teapot", size=(0, 10))
-    assert str(e.value) == cli_error(run_cli(cli, "render", "--size", "0x10", "-o", str(tmp_path / "x.png"), check=False))
+    # `size` is the scene file's render.width/height (the `--size` flag has its
+    # own WIDTHxHEIGHT syntax and message), so the same values in a scene file.
+    scene = tmp_path / "zero.toml"
+    scene.write_text("[render]\nwidth = 0\nheight = 10\n")
+    assert str(e.value) == cli_error(run_cli(cli, "render", str(scene), "-o", str(tmp_path / "x.png"), check=False))
 
     with pytest.raises(ValueError) as e:
         shadelab.render("teapot", material={"shininess": -1})

@@ -1,5 +1,5 @@
-//! What the `hostile_*` tests share: running the real binary in a temporary
-//! directory and reading what it said.
+//! What the binary's integration tests share: running the real binary in a
+//! temporary directory and reading what it said and wrote.
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
@@ -191,4 +191,89 @@ pub fn gltf_doc(
 "bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":{byte_length}}}],
 "accessors":[{{"bufferView":0,"componentType":5126,"count":{vertices},"type":"VEC3","min":[0,0,0],"max":[1,1,0]}}]{extra}}}"#
     )
+}
+
+/// Asserts that no temporary file was left in `dir`.
+pub fn assert_no_temporary_files(dir: &Path) {
+    let names = entries(dir);
+    assert!(
+        names.iter().all(|n| !n.ends_with(".tmp")),
+        "temporary file left behind: {names:?}"
+    );
+}
+
+/// Runs `render` with `args` and `-o out.png` in `dir`, expecting an input
+/// error that mentions every needle, and no output file.
+pub fn assert_render_fails(dir: &Path, args: &[&str], needles: &[&str]) {
+    let mut all = vec!["render"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["-o", "out.png"]);
+    let out = run(dir, &all);
+    assert_input_error(&out, needles);
+    assert!(!dir.join("out.png").exists(), "{args:?} created the output");
+    assert_no_temporary_files(dir);
+}
+
+/// The background of a render.
+pub const BLACK: [u8; 3] = [0, 0, 0];
+
+/// A decoded 8-bit RGB image.
+#[derive(PartialEq)]
+pub struct Png {
+    pub width: u32,
+    pub height: u32,
+    pub rgb: Vec<u8>,
+}
+
+/// Short, so that a failed comparison does not print every pixel.
+impl std::fmt::Debug for Png {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let drawn = self.rgb.chunks(3).filter(|p| *p != [0, 0, 0]).count();
+        write!(
+            f,
+            "Png {{ {}x{}, {} non-black pixels, byte sum {} }}",
+            self.width,
+            self.height,
+            drawn,
+            self.rgb.iter().map(|&c| u64::from(c)).sum::<u64>()
+        )
+    }
+}
+
+impl Png {
+    /// How many pixels differ from `background`.
+    pub fn drawn(&self, background: [u8; 3]) -> usize {
+        self.rgb.chunks(3).filter(|p| *p != background).count()
+    }
+
+    pub fn read(path: &Path) -> Png {
+        let file = std::fs::File::open(path)
+            .unwrap_or_else(|e| panic!("cannot open {}: {e}", path.display()));
+        let decoder = png::Decoder::new(std::io::BufReader::new(file));
+        let mut reader = decoder.read_info().expect("a PNG header");
+        let mut buf = vec![0; reader.output_buffer_size()];
+        let info = reader.next_frame(&mut buf).expect("a PNG frame");
+        assert_eq!(info.color_type, png::ColorType::Rgb);
+        assert_eq!(info.bit_depth, png::BitDepth::Eight);
+        buf.truncate(info.buffer_size());
+        Png {
+            width: info.width,
+            height: info.height,
+            rgb: buf,
+        }
+    }
+
+    pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
+        assert!(x < self.width && y < self.height, "({x}, {y}) is outside");
+        let at = (y as usize * self.width as usize + x as usize) * 3;
+        [self.rgb[at], self.rgb[at + 1], self.rgb[at + 2]]
+    }
+
+    /// The pixels of the rectangle at (`x`, `y`) of size `w` × `h`.
+    pub fn region(&self, x: u32, y: u32, w: u32, h: u32) -> Vec<[u8; 3]> {
+        (y..y + h)
+            .flat_map(|py| (x..x + w).map(move |px| (px, py)))
+            .map(|(px, py)| self.pixel(px, py))
+            .collect()
+    }
 }
