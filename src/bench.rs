@@ -43,14 +43,14 @@ pub struct BenchArgs {
     #[arg(long, value_delimiter = ',', value_parser = parse_size, allow_hyphen_values = true)]
     pub size: Vec<(u32, u32)>,
     /// Shading methods (comma-separated or repeated). Default: all three.
-    #[arg(long, value_enum, value_delimiter = ',')]
-    pub shading: Vec<BenchShading>,
+    #[arg(long, value_parser = crate::cli::choice::<Shading>(), value_delimiter = ',')]
+    pub shading: Vec<Shading>,
     /// Thread counts (comma-separated or repeated), each a rayon pool. Default: 1,2.
     #[arg(long, value_delimiter = ',', value_parser = whole::<u32, 1, { MAX_THREADS as u64 }>, allow_hyphen_values = true)]
     pub threads: Vec<u32>,
     /// Rasterizers (comma-separated or repeated). Default: tiled,scanline.
-    #[arg(long, value_enum, value_delimiter = ',')]
-    pub rasterizer: Vec<BenchRasterizer>,
+    #[arg(long, value_parser = crate::cli::choice::<Rasterizer>(), value_delimiter = ',')]
+    pub rasterizer: Vec<Rasterizer>,
     /// Timed frames per row (fewer if the row's time budget runs out first).
     #[arg(long, default_value_t = 31, value_parser = whole::<u32, 1, 100_000>, allow_hyphen_values = true)]
     pub frames: u32,
@@ -111,45 +111,6 @@ impl BenchModel {
             BenchModel::Bunny => Some("stanford-bunny.obj"),
             BenchModel::Dragon => Some("dragon_100k.obj"),
             _ => None,
-        }
-    }
-}
-
-/// `--shading` for the bench.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum BenchShading {
-    /// Flat.
-    Flat,
-    /// Gouraud.
-    Gouraud,
-    /// Phong.
-    Phong,
-}
-
-impl From<BenchShading> for Shading {
-    fn from(s: BenchShading) -> Shading {
-        match s {
-            BenchShading::Flat => Shading::Flat,
-            BenchShading::Gouraud => Shading::Gouraud,
-            BenchShading::Phong => Shading::Phong,
-        }
-    }
-}
-
-/// `--rasterizer` for the bench.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum BenchRasterizer {
-    /// The tiled SIMD rasterizer.
-    Tiled,
-    /// The scanline reference.
-    Scanline,
-}
-
-impl From<BenchRasterizer> for Rasterizer {
-    fn from(r: BenchRasterizer) -> Rasterizer {
-        match r {
-            BenchRasterizer::Tiled => Rasterizer::Tiled,
-            BenchRasterizer::Scanline => Rasterizer::Scanline,
         }
     }
 }
@@ -355,17 +316,10 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     let sizes = or_all(&args.size, &[(512, 512), (1920, 1080)]);
     let shadings = or_all(
         &args.shading,
-        &[
-            BenchShading::Flat,
-            BenchShading::Gouraud,
-            BenchShading::Phong,
-        ],
+        &[Shading::Flat, Shading::Gouraud, Shading::Phong],
     );
     let threads = or_all(&args.threads, &[1, 2]);
-    let rasterizers = or_all(
-        &args.rasterizer,
-        &[BenchRasterizer::Tiled, BenchRasterizer::Scanline],
-    );
+    let rasterizers = or_all(&args.rasterizer, &[Rasterizer::Tiled, Rasterizer::Scanline]);
     let models = load_models(args, &selected).map_err(input_error)?;
     for model in &models {
         for &(width, height) in &sizes {
@@ -427,7 +381,7 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
             for &shading in &shadings {
                 for &rasterizer in &rasterizers {
                     for (threads, pool) in &pools {
-                        let options = options(width, height, shading.into(), rasterizer.into());
+                        let options = options(width, height, shading, rasterizer);
                         let row = time_row(args, pool, &scene, &options).map_err(input_error)?;
                         let row = Row {
                             model: model.kind.name(),
@@ -673,7 +627,7 @@ fn export(
     dir: &Path,
     models: &[Model],
     sizes: &[(u32, u32)],
-    shadings: &[BenchShading],
+    shadings: &[Shading],
 ) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let mut renderer = Renderer::new();
@@ -718,7 +672,6 @@ fn export(
             );
             write_file(&dir.join(format!("{stem}.json")), description.as_bytes())?;
             for &shading in shadings {
-                let shading = Shading::from(shading);
                 let options = options(width, height, shading, Rasterizer::Tiled);
                 let mut image = Image::filled(width, height, BACKGROUND);
                 renderer.render_into(&scene, &options, &mut image)?;

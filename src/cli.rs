@@ -2,14 +2,15 @@
 
 use std::path::{Path, PathBuf};
 
+use clap::builder::TypedValueParser as _;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use shadelab_core::limits::{MAX_COST_RUNS, MAX_QUAD_SIZE, MIN_QUAD_SIZE};
 use shadelab_core::raster::scanline::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
-use shadelab_core::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
-use shadelab_io::{
-    InterpolationName, LightKindName, LightSection, NormalsChoice, PolygonsName, RasterizerName,
-    SceneFile, ShadingName, SpecularName,
+use shadelab_core::{
+    Choice, Interpolation, Polygons, Rasterizer, Shading, Specular, MAX_IMAGE_PIXELS,
+    MAX_IMAGE_SIDE,
 };
+use shadelab_io::{LightKindName, LightSection, NormalsChoice, SceneFile};
 
 /// Flat, Gouraud and Phong shading on an exact CPU rasterizer.
 #[derive(Debug, Parser)]
@@ -101,8 +102,8 @@ pub struct ExplainArgs {
     #[arg(long, value_parser = parse_pixel, allow_hyphen_values = true)]
     pub pixel: (u32, u32),
     /// Only this method (default: all three).
-    #[arg(long, value_enum)]
-    pub shading: Option<ShadingArg>,
+    #[arg(long, value_parser = choice::<Shading>())]
+    pub shading: Option<Shading>,
     /// Language of the explanation.
     #[arg(long, value_enum, default_value = "en")]
     pub lang: LangArg,
@@ -299,8 +300,8 @@ pub struct RenderArgs {
     /// Scene file (TOML); flags override its values.
     pub scene: Option<PathBuf>,
     /// Shading method.
-    #[arg(long, value_enum)]
-    pub shading: Option<ShadingArg>,
+    #[arg(long, value_parser = choice::<Shading>())]
+    pub shading: Option<Shading>,
     /// Output PNG file (`-`: standard output).
     #[arg(short, long, value_parser = output_path)]
     pub output: PathBuf,
@@ -392,8 +393,8 @@ pub struct SceneOverrides {
     #[arg(long, allow_negative_numbers = true)]
     pub crease_angle: Option<f32>,
     /// Attribute interpolation.
-    #[arg(long, value_enum)]
-    pub interpolation: Option<InterpolationArg>,
+    #[arg(long, value_parser = choice::<Interpolation>())]
+    pub interpolation: Option<Interpolation>,
     /// Draw back faces too (lit with reversed normals).
     #[arg(long)]
     pub no_cull: bool,
@@ -404,14 +405,14 @@ pub struct SceneOverrides {
     #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
     pub background: Option<[i64; 3]>,
     /// Which rasterizer draws: the tiled SIMD one (default) or the scanline reference.
-    #[arg(long, value_enum)]
-    pub rasterizer: Option<RasterizerArg>,
+    #[arg(long, value_parser = choice::<Rasterizer>())]
+    pub rasterizer: Option<Rasterizer>,
     /// Polygons of more than three vertices as triangle fans, or whole (textbook, scanline only).
-    #[arg(long, value_enum)]
-    pub polygons: Option<PolygonsArg>,
+    #[arg(long, value_parser = choice::<Polygons>())]
+    pub polygons: Option<Polygons>,
     /// The specular term: Phong's r·v or Blinn's n·h.
-    #[arg(long, value_enum)]
-    pub specular: Option<SpecularArg>,
+    #[arg(long, value_parser = choice::<Specular>())]
+    pub specular: Option<Specular>,
     /// Step attributes in fixed point with this many fraction bits (scanline rasterizer).
     #[arg(long, value_name = "BITS", value_parser = whole::<u32, { MIN_FRACTION_BITS as u64 }, { MAX_FRACTION_BITS as u64 }>, allow_hyphen_values = true)]
     pub fixed_point: Option<u32>,
@@ -423,42 +424,15 @@ pub struct SceneOverrides {
     pub palette_offset: Option<u32>,
 }
 
-/// `--rasterizer`
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum RasterizerArg {
-    /// The textbook scanline algorithm, one thread: the reference.
-    Scanline,
-    /// Edge functions over bands of rows, SIMD, all threads.
-    Tiled,
-}
-
-/// `--polygons`
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum PolygonsArg {
-    /// Triangle fans, each interpolated as a plane.
-    Fans,
-    /// Whole polygons, along edges and spans (scanline rasterizer only).
-    Whole,
-}
-
-/// `--specular`
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum SpecularArg {
-    /// max(0, r·v)^p
-    Phong,
-    /// max(0, n·h)^p
-    BlinnPhong,
-}
-
-/// `--shading`
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum ShadingArg {
-    /// One lighting evaluation per polygon.
-    Flat,
-    /// Lighting per vertex, colours interpolated.
-    Gouraud,
-    /// Normals interpolated, lighting per pixel.
-    Phong,
+/// A flag that takes one of core's [`Choice`]s (`--shading`,
+/// `--rasterizer`, ...): its names and their help come from core.
+pub fn choice<T: Choice + Send + Sync + Clone>() -> impl clap::builder::TypedValueParser<Value = T>
+{
+    let values = T::VALUES
+        .iter()
+        .map(|v| clap::builder::PossibleValue::new(v.name()).help(v.help()));
+    clap::builder::PossibleValuesParser::new(values)
+        .map(|name| T::from_name(&name).expect("a possible value is a name"))
 }
 
 /// `--normals`
@@ -474,15 +448,6 @@ pub enum NormalsArg {
     Area,
     /// Angle-weighted.
     Angle,
-}
-
-/// `--interpolation`
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum InterpolationArg {
-    /// Perspective-correct.
-    Perspective,
-    /// Linear in screen space, as in the textbook.
-    Screen,
 }
 
 fn parse_numbers<const N: usize, T: std::str::FromStr>(
@@ -626,11 +591,8 @@ impl SceneOverrides {
         if self.pitch.is_some() {
             scene.render.pitch = self.pitch;
         }
-        if let Some(i) = self.interpolation {
-            scene.render.interpolation = Some(match i {
-                InterpolationArg::Perspective => InterpolationName::Perspective,
-                InterpolationArg::Screen => InterpolationName::Screen,
-            });
+        if self.interpolation.is_some() {
+            scene.render.interpolation = self.interpolation;
         }
         if self.no_cull {
             scene.render.cull_backfaces = Some(false);
@@ -641,23 +603,14 @@ impl SceneOverrides {
         if self.background.is_some() {
             scene.render.background = self.background;
         }
-        if let Some(r) = self.rasterizer {
-            scene.render.rasterizer = Some(match r {
-                RasterizerArg::Scanline => RasterizerName::Scanline,
-                RasterizerArg::Tiled => RasterizerName::Tiled,
-            });
+        if self.rasterizer.is_some() {
+            scene.render.rasterizer = self.rasterizer;
         }
-        if let Some(p) = self.polygons {
-            scene.render.polygons = Some(match p {
-                PolygonsArg::Fans => PolygonsName::Fans,
-                PolygonsArg::Whole => PolygonsName::Whole,
-            });
+        if self.polygons.is_some() {
+            scene.render.polygons = self.polygons;
         }
-        if let Some(s) = self.specular {
-            scene.render.specular = Some(match s {
-                SpecularArg::Phong => SpecularName::Phong,
-                SpecularArg::BlinnPhong => SpecularName::BlinnPhong,
-            });
+        if self.specular.is_some() {
+            scene.render.specular = self.specular;
         }
         if self.fixed_point.is_some() {
             scene.render.fixed_point_bits = self.fixed_point;
@@ -665,16 +618,6 @@ impl SceneOverrides {
         if self.palette.is_some() {
             scene.render.palette_shades = self.palette;
             scene.render.palette_offset = self.palette_offset;
-        }
-    }
-}
-
-impl From<ShadingArg> for ShadingName {
-    fn from(s: ShadingArg) -> ShadingName {
-        match s {
-            ShadingArg::Flat => ShadingName::Flat,
-            ShadingArg::Gouraud => ShadingName::Gouraud,
-            ShadingArg::Phong => ShadingName::Phong,
         }
     }
 }

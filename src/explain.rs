@@ -29,9 +29,7 @@ pub fn run(args: &ExplainArgs) -> Result<(), Failure> {
         )));
     }
     let methods: Vec<Shading> = match args.shading {
-        Some(s) => vec![shadelab_core::Shading::from(
-            shadelab_io::ShadingName::from(s),
-        )],
+        Some(s) => vec![s],
         None => Shading::ALL.to_vec(),
     };
     let inspection = inspect(&loaded.scene, options, x, y, &methods).map_err(input_error)?;

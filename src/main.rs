@@ -158,7 +158,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let mut file = read_scene(args.scene.as_deref())?;
             args.overrides.apply(&mut file, args.scene.is_some());
             if let Some(s) = args.shading {
-                file.render.shading = Some(s.into());
+                file.render.shading = Some(s);
             }
             let (scene, options, inputs) = resolve(&file, args.scene.as_deref())?;
             check_output(&args.output, &inputs)?;

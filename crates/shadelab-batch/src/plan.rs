@@ -122,16 +122,14 @@ impl FromStr for Views {
 pub fn parse_modes(s: &str) -> Result<Vec<Shading>, String> {
     let mut modes = Vec::new();
     for word in s.split(',').map(str::trim) {
-        let add: &[Shading] = match word.to_ascii_lowercase().as_str() {
-            "flat" => &[Shading::Flat],
-            "gouraud" => &[Shading::Gouraud],
-            "phong" => &[Shading::Phong],
-            "all" => &Shading::ALL,
-            _ => return Err(format!("{word:?} is not flat, gouraud, phong or all")),
+        let add = match word.parse::<Shading>() {
+            Ok(m) => vec![m],
+            Err(_) if word.eq_ignore_ascii_case("all") => Shading::ALL.to_vec(),
+            Err(_) => return Err(format!("{word:?} is not flat, gouraud, phong or all")),
         };
         for m in add {
-            if !modes.contains(m) {
-                modes.push(*m);
+            if !modes.contains(&m) {
+                modes.push(m);
             }
         }
     }

@@ -183,12 +183,7 @@ pub fn run(config: &BatchConfig) -> Result<Summary, BatchError> {
         .map_err(BatchError::Settings)?;
     let modes = match &config.modes {
         Some(m) if !m.is_empty() => m.clone(),
-        _ => vec![config
-            .settings
-            .render
-            .shading
-            .map(Shading::from)
-            .unwrap_or_default()],
+        _ => vec![config.settings.render.shading.unwrap_or_default()],
     };
     let manifest = Manifest::open(&config.manifest)?;
     let dir = manifest.dir().to_path_buf();

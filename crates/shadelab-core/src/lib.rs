@@ -8,6 +8,8 @@
 //! fill rule; front faces counter-clockwise as the viewer sees them.
 #![warn(missing_docs)]
 
+#[macro_use]
+pub mod choice;
 mod camera;
 mod clip;
 mod color;
@@ -26,6 +28,7 @@ mod text;
 mod tiled;
 
 pub use camera::{Camera, CameraError};
+pub use choice::{Choice, UnknownChoice};
 pub use clip::{clip_polygon, ClipVertex};
 pub use color::{Rgb, Rgb8};
 pub use image::Image;

@@ -87,15 +87,10 @@ pub enum Specular {
     BlinnPhong,
 }
 
-impl Specular {
-    /// The lower-case name used in files and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Specular::Phong => "phong",
-            Specular::BlinnPhong => "blinn-phong",
-        }
-    }
-}
+choices!(Specular, "specular term", {
+    Phong => "phong": "max(0, r·v)^p with r the mirrored light direction (Phong, 1975)",
+    BlinnPhong => "blinn-phong": "max(0, n·h)^p with h halfway between light and eye (Blinn, 1977)",
+});
 
 /// Everything the reflection model needs besides the surface point.
 #[derive(Debug, Clone, PartialEq)]

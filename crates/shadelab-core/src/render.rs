@@ -42,7 +42,8 @@ use crate::raster::{signed_area_ccw, snap, FragmentSink, Interpolation, ScreenVe
 use crate::simd::SimdLevel;
 use crate::tiled::TiledRasterizer;
 
-/// The three classic shading methods.
+/// The three classic shading methods: the one definition every layer uses
+/// (names and help declared below, see [`crate::choice`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Shading {
     /// One lighting evaluation per polygon.
@@ -54,19 +55,13 @@ pub enum Shading {
     Phong,
 }
 
+choices!(Shading, "shading method", {
+    Flat => "flat": "one lighting evaluation per polygon",
+    Gouraud => "gouraud": "lighting per vertex, colours interpolated",
+    Phong => "phong": "normals interpolated, lighting per pixel",
+});
+
 impl Shading {
-    /// All three, in the order they are usually shown.
-    pub const ALL: [Shading; 3] = [Shading::Flat, Shading::Gouraud, Shading::Phong];
-
-    /// The lower-case name used in files and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Shading::Flat => "flat",
-            Shading::Gouraud => "gouraud",
-            Shading::Phong => "phong",
-        }
-    }
-
     /// The display name ("Flat", "Gouraud", "Phong").
     pub fn title(self) -> &'static str {
         match self {
@@ -87,18 +82,10 @@ pub enum Rasterizer {
     Tiled,
 }
 
-impl Rasterizer {
-    /// Both, reference first.
-    pub const ALL: [Rasterizer; 2] = [Rasterizer::Scanline, Rasterizer::Tiled];
-
-    /// The lower-case name used in files and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Rasterizer::Scanline => "scanline",
-            Rasterizer::Tiled => "tiled",
-        }
-    }
-}
+choices!(Rasterizer, "rasterizer", {
+    Scanline => "scanline": "the textbook scanline algorithm: the reference, one thread",
+    Tiled => "tiled": "edge functions over bands of rows, SIMD blocks, all threads",
+});
 
 /// How polygons with more than three vertices are interpolated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -112,15 +99,10 @@ pub enum Polygons {
     Whole,
 }
 
-impl Polygons {
-    /// The lower-case name used in files and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Polygons::Fans => "fans",
-            Polygons::Whole => "whole",
-        }
-    }
-}
+choices!(Polygons, "polygon interpolation", {
+    Fans => "fans": "each polygon a fan of triangles, each interpolated as a plane (as GPUs do)",
+    Whole => "whole": "whole polygons along edges and spans, as the textbook does (scanline only)",
+});
 
 /// What to draw: a mesh with its vertex normals, a camera and the lighting.
 #[derive(Debug, Clone, PartialEq)]

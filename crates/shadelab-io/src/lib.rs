@@ -23,9 +23,8 @@ pub use output::{write_atomic, STDOUT_PATH};
 pub use ply::{load_ply, parse_ply};
 pub use png::{encode_png, encode_png_with, read_png, write_png, write_png_with, PngCompression};
 pub use scene::{
-    model_path, AmbientSection, CameraSection, InterpolationName, LightKindName, LightSection,
-    MaterialSection, ModelSection, NormalsChoice, PolygonsName, RasterizerName, RenderSection,
-    SceneError, SceneFile, ShadingName, SpecularName, MAX_ZOOM, MIN_ZOOM,
+    model_path, AmbientSection, CameraSection, LightKindName, LightSection, MaterialSection,
+    ModelSection, NormalsChoice, RenderSection, SceneError, SceneFile, MAX_ZOOM, MIN_ZOOM,
 };
 pub use stl::{load_stl, parse_stl};
 

@@ -211,7 +211,7 @@ pub struct RenderSection {
     /// Pixels; default 600.
     pub height: Option<u32>,
     /// flat | gouraud | phong; default phong.
-    pub shading: Option<ShadingName>,
+    pub shading: Option<Shading>,
     /// RGB 0–255; default black.
     #[serde(default, deserialize_with = "exactly::three_or_none")]
     pub background: Option<[i64; 3]>,
@@ -220,13 +220,13 @@ pub struct RenderSection {
     /// Default false.
     pub gouraud_specular: Option<bool>,
     /// perspective | screen; default perspective.
-    pub interpolation: Option<InterpolationName>,
+    pub interpolation: Option<Interpolation>,
     /// scanline | tiled; default tiled (scanline when `polygons = "whole"`).
-    pub rasterizer: Option<RasterizerName>,
+    pub rasterizer: Option<Rasterizer>,
     /// fans | whole; default fans.
-    pub polygons: Option<PolygonsName>,
+    pub polygons: Option<Polygons>,
     /// phong | blinn-phong: the specular term's `r·v` or `n·h`; default phong.
-    pub specular: Option<SpecularName>,
+    pub specular: Option<Specular>,
     /// Fraction bits of fixed-point attribute stepping (scanline only); absent: floating point.
     pub fixed_point_bits: Option<u32>,
     /// Shades of the material colour in an indexed palette (scanline only); absent: true colour.
@@ -246,86 +246,6 @@ pub struct RenderSection {
 pub const MIN_ZOOM: f32 = 0.1;
 /// Largest `render.zoom`.
 pub const MAX_ZOOM: f32 = 100.0;
-
-/// A shading method's name in a file.
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum ShadingName {
-    /// Flat.
-    Flat,
-    /// Gouraud.
-    Gouraud,
-    /// Phong.
-    Phong,
-}
-
-impl From<ShadingName> for Shading {
-    fn from(s: ShadingName) -> Shading {
-        match s {
-            ShadingName::Flat => Shading::Flat,
-            ShadingName::Gouraud => Shading::Gouraud,
-            ShadingName::Phong => Shading::Phong,
-        }
-    }
-}
-
-/// An interpolation mode's name in a file.
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum InterpolationName {
-    /// Perspective-correct.
-    Perspective,
-    /// Screen-space linear.
-    Screen,
-}
-
-/// A rasterizer's name in a file.
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum RasterizerName {
-    /// The scanline reference.
-    Scanline,
-    /// The tiled SIMD rasterizer.
-    Tiled,
-}
-
-impl From<RasterizerName> for Rasterizer {
-    fn from(r: RasterizerName) -> Rasterizer {
-        match r {
-            RasterizerName::Scanline => Rasterizer::Scanline,
-            RasterizerName::Tiled => Rasterizer::Tiled,
-        }
-    }
-}
-
-/// How polygons are drawn, by name in a file.
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum PolygonsName {
-    /// As triangle fans.
-    Fans,
-    /// Whole (scanline only).
-    Whole,
-}
-
-/// A specular term's name in a file.
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub enum SpecularName {
-    /// Phong's `r·v`.
-    Phong,
-    /// Blinn's `n·h`.
-    BlinnPhong,
-}
-
-impl From<SpecularName> for Specular {
-    fn from(s: SpecularName) -> Specular {
-        match s {
-            SpecularName::Phong => Specular::Phong,
-            SpecularName::BlinnPhong => Specular::BlinnPhong,
-        }
-    }
-}
 
 /// Why a scene could not be read or used.
 #[derive(Debug, thiserror::Error)]
@@ -551,31 +471,25 @@ impl SceneFile {
         let options = RenderOptions {
             width,
             height,
-            shading: r.shading.map(Shading::from).unwrap_or_default(),
+            shading: r.shading.unwrap_or_default(),
             background: rgb8("render.background", r.background.unwrap_or([0, 0, 0]))?,
             cull_backfaces: r.cull_backfaces.unwrap_or(true),
             gouraud_specular: r.gouraud_specular.unwrap_or(false),
-            interpolation: match r.interpolation {
-                Some(InterpolationName::Screen) => Interpolation::Screen,
-                _ => Interpolation::Perspective,
-            },
-            polygons: match r.polygons {
-                Some(PolygonsName::Whole) => Polygons::Whole,
-                _ => Polygons::Fans,
-            },
+            interpolation: r.interpolation.unwrap_or_default(),
+            polygons: r.polygons.unwrap_or_default(),
             rasterizer: match (r.rasterizer, r.polygons) {
-                (Some(RasterizerName::Tiled), Some(PolygonsName::Whole)) => {
+                (Some(Rasterizer::Tiled), Some(Polygons::Whole)) => {
                     return Err(value_error(
                         "render.polygons",
                         "\"whole\" needs rasterizer = \"scanline\"; the tiled rasterizer draws fans"
                             .to_string(),
                     ));
                 }
-                (Some(name), _) => name.into(),
-                (None, Some(PolygonsName::Whole)) => Rasterizer::Scanline,
+                (Some(rasterizer), _) => rasterizer,
+                (None, Some(Polygons::Whole)) => Rasterizer::Scanline,
                 (None, _) => Rasterizer::Tiled,
             },
-            specular: r.specular.map(Specular::from).unwrap_or_default(),
+            specular: r.specular.unwrap_or_default(),
             fixed_point_bits: r.fixed_point_bits,
             palette: match (r.palette_shades, r.palette_offset) {
                 (None, Some(_)) => {
@@ -614,7 +528,7 @@ impl SceneFile {
         // Modes only the scanline rasterizer draws choose it unless the file insists.
         if options.needs_scanline() {
             match r.rasterizer {
-                Some(RasterizerName::Tiled) => {
+                Some(Rasterizer::Tiled) => {
                     let key = if r.fixed_point_bits.is_some() {
                         "render.fixed_point_bits"
                     } else {

@@ -8,9 +8,7 @@ use shadelab_core::{
     Interpolation, LightKind, Mesh, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8, Scene, Shading,
     Specular, BUILTIN_MODELS,
 };
-use shadelab_io::{
-    load_obj, InterpolationName, LightKindName, NormalsChoice, SceneError, SceneFile, ShadingName,
-};
+use shadelab_io::{load_obj, LightKindName, NormalsChoice, SceneError, SceneFile};
 
 const FULL: &str = r#"
 [model]
@@ -158,11 +156,8 @@ fn full_example_parses_as_written() {
     assert_eq!(file.material.ks, Some([255, 255, 255]));
     assert_eq!(file.material.shininess, Some(32.0));
     assert_eq!(file.render.width, Some(800));
-    assert_eq!(file.render.shading, Some(ShadingName::Phong));
-    assert_eq!(
-        file.render.interpolation,
-        Some(InterpolationName::Perspective)
-    );
+    assert_eq!(file.render.shading, Some(Shading::Phong));
+    assert_eq!(file.render.interpolation, Some(Interpolation::Perspective));
     assert_eq!(file.render.cull_backfaces, Some(true));
     assert_eq!(file.render.gouraud_specular, Some(false));
 }

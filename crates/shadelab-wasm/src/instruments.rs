@@ -351,14 +351,8 @@ pub struct MethodAnswer {
 }
 
 fn shading_of(name: &str) -> Result<Shading, EngineError> {
-    Shading::ALL
-        .into_iter()
-        .find(|s| s.name() == name)
-        .ok_or_else(|| {
-            bad(format!(
-                "unknown method {name:?} (expected flat, gouraud or phong)"
-            ))
-        })
+    name.parse()
+        .map_err(|e: shadelab_core::UnknownChoice| bad(e.to_string()))
 }
 
 impl Engine {

@@ -68,6 +68,11 @@ pub enum Interpolation {
     Screen,
 }
 
+choices!(Interpolation, "interpolation", {
+    Perspective => "perspective": "perspective-correct: attributes divided by w, linear on the screen",
+    Screen => "screen": "linear in screen space along edges and spans, as in the textbook",
+});
+
 /// A polygon vertex in window space, ready to rasterize.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScreenVertex<const N: usize> {
