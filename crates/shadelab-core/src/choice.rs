@@ -135,8 +135,9 @@ mod tests {
 
     /// Every value's name reads back as that value, by `FromStr` (any ASCII
     /// case) and by serde (exactly), and `Display` writes the name.
-    fn round_trips<T: Choice + std::fmt::Debug + std::fmt::Display + std::str::FromStr>()
+    fn round_trips<T>()
     where
+        T: Choice + std::fmt::Debug + std::fmt::Display + std::str::FromStr,
         T: for<'de> Deserialize<'de>,
         <T as std::str::FromStr>::Err: std::fmt::Debug,
     {
