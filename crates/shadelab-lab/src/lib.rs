@@ -4,7 +4,7 @@
 //!
 //! | instrument | module | entry point |
 //! |---|---|---|
-//! | pixel inspector | `inspect` | [`inspect`], [`inspection_text`] ([`inspection_header`], [`method_inspection_text`]) |
+//! | pixel inspector | `inspect`, `inspect_text` | [`inspect`], [`inspection_text`] ([`inspection_header`], [`method_inspection_text`]) |
 //! | scanline profile (Mach bands) | `profile` | [`profile()`] |
 //! | exact surfaces | `exact` | [`Surface`], [`ExactImage`] |
 //! | error maps, accuracy | `errors` | [`error_maps`], [`heat_scale`], [`accuracy`] |
@@ -35,6 +35,7 @@ mod cost;
 mod errors;
 mod exact;
 mod inspect;
+mod inspect_text;
 mod overlay;
 mod profile;
 mod quad;
@@ -49,9 +50,9 @@ pub use exact::{
     exact_pixel, normalization, ExactImage, Rays, Shape, Surface, SurfaceHit, EXACT_MODELS,
 };
 pub use inspect::{
-    inspect, inspection_header, inspection_text, lerp_attributes, method_inspection_text,
-    CornerView, EdgeView, Inspection, MethodView, SpanView, WalkedVertex,
+    inspect, lerp_attributes, CornerView, EdgeView, Inspection, MethodView, SpanView, WalkedVertex,
 };
+pub use inspect_text::{inspection_header, inspection_text, method_inspection_text};
 pub use overlay::{
     draw_overlays, Canvas, Overlays, Projector, WindowPoint, FACE_NORMAL, LIGHT, NORMAL_LENGTH,
     VERTEX_NORMAL, WIREFRAME,

@@ -1,0 +1,369 @@
+//! The TOML scene format: every parameter of a render in one file.
+//!
+//! [`SceneFile`] mirrors the file (every section and key optional, with the
+//! documented defaults); command-line flags override its fields; then
+//! [`SceneFile::resolve`] checks every value, loads the model and builds the
+//! core's [`Scene`] and [`RenderOptions`]. Errors name the key at fault.
+//!
+//! A model file's material (an OBJ file's `.mtl` colours, see
+//! [`crate::load_mesh_file`]) fills in what the scene leaves unset: `kd` takes
+//! the material's `Kd`, and `ka` its `Ka`, or its `Kd` when it gives no `Ka`.
+//! A value in the scene (or a flag) always wins.
+//!
+//! This file holds the format (the sections, their keys and defaults) and its
+//! reading; `resolve.rs` checks the values and builds the scene.
+
+mod resolve;
+
+pub use resolve::model_path;
+
+use std::path::Path;
+
+use serde::Deserialize;
+use shadelab_core::limits::MAX_SCENE_BYTES;
+use shadelab_core::{Interpolation, Polygons, Rasterizer, Shading, Specular};
+
+use crate::input::{read_capped, unify_line_ends};
+use crate::LoadError;
+
+/// A scene file as written: every key optional.
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// `[model]`
+    #[serde(default)]
+    pub model: ModelSection,
+    /// `[camera]`; absent: the camera frames the model's bounding sphere.
+    pub camera: Option<CameraSection>,
+    /// `[ambient]`
+    #[serde(default)]
+    pub ambient: AmbientSection,
+    /// `[[lights]]`; absent: one white point light at (2, 2, 3).
+    pub lights: Option<Vec<LightSection>>,
+    /// `[material]`
+    #[serde(default)]
+    pub material: MaterialSection,
+    /// `[render]`
+    #[serde(default)]
+    pub render: RenderSection,
+}
+
+/// `[model]`
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSection {
+    /// A built-in model's name or a path to a mesh file (.obj, .stl, .ply, .gltf, .glb), relative to the scene file.
+    pub source: Option<String>,
+    /// auto | file | uniform | area | angle
+    pub normals: Option<NormalsChoice>,
+    /// Degrees: no smoothing across sharper edges.
+    pub crease_angle: Option<f32>,
+    /// Tessellation level of a built-in model.
+    pub detail: Option<u32>,
+}
+
+/// Where vertex normals come from.
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum NormalsChoice {
+    /// The file's normals when it has them, else uniform.
+    #[default]
+    Auto,
+    /// The file's normals (an error when it has none).
+    File,
+    /// Unweighted average of adjacent face normals.
+    Uniform,
+    /// Area-weighted average.
+    Area,
+    /// Angle-weighted average.
+    Angle,
+}
+
+/// `[camera]`
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSection {
+    /// The viewer's position.
+    #[serde(deserialize_with = "exactly::three")]
+    pub eye: [f32; 3],
+    /// The point looked at.
+    #[serde(default, deserialize_with = "exactly::three")]
+    pub target: [f32; 3],
+    /// Up on the screen.
+    #[serde(default = "default_up", deserialize_with = "exactly::three")]
+    pub up: [f32; 3],
+    /// Vertical field of view, degrees.
+    #[serde(default = "default_fov")]
+    pub fov_y: f32,
+    /// Near plane distance.
+    #[serde(default = "default_near")]
+    pub near: f32,
+    /// Far plane distance.
+    #[serde(default = "default_far")]
+    pub far: f32,
+}
+
+/// Arrays of exactly three values: serde's `[T; 3]` reads three elements and
+/// lets a fourth pass unseen, so `position = [1, 2, 3, 4]` would lose its
+/// last number in silence.
+mod exactly {
+    use serde::de::{Deserialize, Deserializer, Error};
+
+    pub fn three<'de, D, T>(d: D) -> Result<[T; 3], D::Error>
+    where
+        D: Deserializer<'de>,
+        T: Deserialize<'de>,
+    {
+        let values = Vec::<T>::deserialize(d)?;
+        let found = values.len();
+        values
+            .try_into()
+            .map_err(|_| D::Error::invalid_length(found, &"an array of exactly 3 numbers"))
+    }
+
+    pub fn three_or_none<'de, D, T>(d: D) -> Result<Option<[T; 3]>, D::Error>
+    where
+        D: Deserializer<'de>,
+        T: Deserialize<'de>,
+    {
+        three(d).map(Some)
+    }
+}
+
+fn default_up() -> [f32; 3] {
+    [0.0, 1.0, 0.0]
+}
+fn default_fov() -> f32 {
+    45.0
+}
+fn default_near() -> f32 {
+    0.1
+}
+fn default_far() -> f32 {
+    100.0
+}
+
+/// `[ambient]`
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct AmbientSection {
+    /// RGB 0–255; default white.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
+    pub color: Option<[i64; 3]>,
+    /// Default 0.2.
+    pub intensity: Option<f32>,
+}
+
+/// The kind of a light.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum LightKindName {
+    /// At a position.
+    Point,
+    /// At infinity, along a direction.
+    Directional,
+}
+
+/// `[[lights]]`
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LightSection {
+    /// point | directional
+    pub kind: LightKindName,
+    /// For a point light.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
+    pub position: Option<[f32; 3]>,
+    /// For a directional light: the direction its rays travel.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
+    pub direction: Option<[f32; 3]>,
+    /// RGB 0–255; default white.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
+    pub color: Option<[i64; 3]>,
+    /// Default 1.
+    pub intensity: Option<f32>,
+}
+
+/// `[material]`
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSection {
+    /// Ambient reflectance, RGB 0–255.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
+    pub ka: Option<[i64; 3]>,
+    /// Diffuse reflectance, RGB 0–255.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
+    pub kd: Option<[i64; 3]>,
+    /// Specular reflectance, RGB 0–255.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
+    pub ks: Option<[i64; 3]>,
+    /// Specular exponent, ≥ 0.
+    pub shininess: Option<f32>,
+}
+
+/// `[render]`
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct RenderSection {
+    /// Pixels; default 800.
+    pub width: Option<u32>,
+    /// Pixels; default 600.
+    pub height: Option<u32>,
+    /// flat | gouraud | phong; default phong.
+    pub shading: Option<Shading>,
+    /// RGB 0–255; default black.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
+    pub background: Option<[i64; 3]>,
+    /// Default true.
+    pub cull_backfaces: Option<bool>,
+    /// Default false.
+    pub gouraud_specular: Option<bool>,
+    /// perspective | screen; default perspective.
+    pub interpolation: Option<Interpolation>,
+    /// scanline | tiled; default tiled (scanline when `polygons = "whole"`).
+    pub rasterizer: Option<Rasterizer>,
+    /// fans | whole; default fans.
+    pub polygons: Option<Polygons>,
+    /// phong | blinn-phong: the specular term's `r·v` or `n·h`; default phong.
+    pub specular: Option<Specular>,
+    /// Fraction bits of fixed-point attribute stepping (scanline only); absent: floating point.
+    pub fixed_point_bits: Option<u32>,
+    /// Shades of the material colour in an indexed palette (scanline only); absent: true colour.
+    pub palette_shades: Option<u32>,
+    /// The palette entry of the darkest shade; default 0.
+    pub palette_offset: Option<u32>,
+    /// Degrees to orbit the camera about its up axis; default 0.
+    pub yaw: Option<f32>,
+    /// Degrees to orbit the camera towards its up axis; default 0.
+    pub pitch: Option<f32>,
+    /// Magnification, [`MIN_ZOOM`]..=[`MAX_ZOOM`]: the field of view narrows
+    /// to `2·atan(tan(fov_y/2) / zoom)`; default 1.
+    pub zoom: Option<f32>,
+}
+
+/// Smallest `render.zoom`.
+pub const MIN_ZOOM: f32 = 0.1;
+/// Largest `render.zoom`.
+pub const MAX_ZOOM: f32 = 100.0;
+
+/// Why a scene could not be read or used.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SceneError {
+    /// The scene file could not be read.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+    /// The TOML is malformed, a key is unknown or a value has the wrong type.
+    #[error("{path}: {message}")]
+    Parse {
+        /// The file.
+        path: String,
+        /// The parser's message, with line and column.
+        message: String,
+    },
+    /// A value is out of range.
+    #[error("{key}: {message}")]
+    Value {
+        /// The key at fault, e.g. `material.shininess`.
+        key: String,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// The model could not be loaded.
+    #[error(transparent)]
+    Model(#[from] LoadError),
+}
+
+pub(crate) fn value_error(key: impl Into<String>, message: impl Into<String>) -> SceneError {
+    SceneError::Value {
+        key: key.into(),
+        message: message.into(),
+    }
+}
+
+impl SceneFile {
+    /// Reads a scene file.
+    ///
+    /// # Errors
+    /// [`SceneError::Io`] or [`SceneError::Parse`] (with line and column).
+    /// Reads a scene file: a regular file of at most [`MAX_SCENE_BYTES`] of
+    /// UTF-8 (a FIFO, a device or a directory is refused without waiting on
+    /// it), parsed as [`SceneFile::parse`] does.
+    ///
+    /// # Errors
+    /// [`SceneError::Io`] when it cannot be read, is not a regular file or
+    /// is too large, or [`SceneError::Parse`] (with line and column).
+    pub fn load(path: &Path) -> Result<SceneFile, SceneError> {
+        let text = SceneFile::read_text(path)?;
+        SceneFile::parse(&text, &path.display().to_string())
+    }
+
+    /// The text of a scene file, read as [`SceneFile::load`] reads it (a
+    /// regular file, at most [`MAX_SCENE_BYTES`], UTF-8), not yet parsed:
+    /// for callers that merge other settings into the TOML first.
+    ///
+    /// # Errors
+    /// As [`SceneFile::load`].
+    pub fn read_text(path: &Path) -> Result<String, SceneError> {
+        let name = path.display().to_string();
+        let io = |source| SceneError::Io {
+            path: name.clone(),
+            source,
+        };
+        let bytes = read_capped(path, MAX_SCENE_BYTES).map_err(|e| match e {
+            LoadError::Io { source, .. } => io(source),
+            LoadError::Invalid { message, .. } => io(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                message,
+            )),
+            other => io(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                match other {
+                    LoadError::TooLarge { bytes, limit, .. } => format!(
+                        "{bytes} bytes is more than the limit of {limit} bytes for a scene file"
+                    ),
+                    other => other.to_string(),
+                },
+            )),
+        })?;
+        let text = String::from_utf8(bytes).map_err(|e| SceneError::Parse {
+            path: name.clone(),
+            message: format!(
+                "not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            ),
+        })?;
+        Ok(text)
+    }
+
+    /// Parses scene TOML; `name` is used in error messages. Lines may end
+    /// with LF, CR LF or a lone CR. A value of the wrong type or length is
+    /// reported with its key (`lights[0].position`), line and column.
+    ///
+    /// # Errors
+    /// [`SceneError::Parse`].
+    pub fn parse(text: &str, name: &str) -> Result<SceneFile, SceneError> {
+        let text = unify_line_ends(text);
+        let parse_error = |mut e: toml::de::Error, key: Option<String>| {
+            e.set_input(Some(&text));
+            let message = e.to_string();
+            SceneError::Parse {
+                path: name.to_owned(),
+                message: match key {
+                    Some(key) => format!("{key}: {message}"),
+                    None => message,
+                },
+            }
+        };
+        let document = toml::Deserializer::parse(&text).map_err(|e| parse_error(e, None))?;
+        serde_path_to_error::deserialize(document).map_err(|e| {
+            let key = e.path().to_string();
+            let key = (key != ".").then_some(key);
+            parse_error(e.into_inner(), key)
+        })
+    }
+}
