@@ -160,6 +160,54 @@ impl RenderOptions {
             || self.fixed_point_bits.is_some()
             || self.palette.is_some()
     }
+
+    /// The one check of the options, whoever set them (the scene file, the
+    /// command line, the page or a program): the image size, the modes only
+    /// the scanline rasterizer draws, the fixed-point bits and the palette.
+    /// Each error names the scene-file key at fault ([`RenderError::key`]).
+    ///
+    /// # Errors
+    /// The first problem found: the size, whole polygons on the tiled
+    /// rasterizer, the bits, the palette, then fixed point or a palette on
+    /// the tiled rasterizer.
+    pub fn check(&self) -> Result<(), RenderError> {
+        let (w, h) = (self.width, self.height);
+        if w == 0
+            || h == 0
+            || w > MAX_IMAGE_SIDE
+            || h > MAX_IMAGE_SIDE
+            || u64::from(w) * u64::from(h) > MAX_IMAGE_PIXELS
+        {
+            return Err(RenderError::ImageSize {
+                width: w,
+                height: h,
+            });
+        }
+        let tiled = self.rasterizer == Rasterizer::Tiled;
+        if tiled && self.polygons == Polygons::Whole {
+            return Err(RenderError::WholePolygonsNeedScanline);
+        }
+        if let Some(bits) = self.fixed_point_bits {
+            if !(MIN_FRACTION_BITS..=MAX_FRACTION_BITS).contains(&bits) {
+                return Err(RenderError::FractionBits(bits));
+            }
+        }
+        if let Some(p) = self.palette {
+            if !p.is_valid() {
+                return Err(RenderError::Palette {
+                    shades: p.shades,
+                    offset: p.offset,
+                });
+            }
+        }
+        if tiled && self.fixed_point_bits.is_some() {
+            return Err(RenderError::ScanlineOnly("render.fixed_point_bits"));
+        }
+        if tiled && self.palette.is_some() {
+            return Err(RenderError::ScanlineOnly("render.palette_shades"));
+        }
+        Ok(())
+    }
 }
 
 impl Default for RenderOptions {
@@ -186,7 +234,7 @@ impl Default for RenderOptions {
 #[non_exhaustive]
 pub enum RenderError {
     /// The image size is zero or too large.
-    #[error("image size {width}x{height} is out of range: each side 1..={MAX_IMAGE_SIDE}, at most {MAX_IMAGE_PIXELS} pixels")]
+    #[error("{}: {}", self.key().unwrap_or("render"), self.problem())]
     ImageSize {
         /// Requested width.
         width: u32,
@@ -208,24 +256,73 @@ pub enum RenderError {
     #[error("{0} is not a finite number")]
     NonFinite(&'static str),
     /// The tiled rasterizer draws polygons as fans only.
-    #[error("the tiled rasterizer draws polygons as triangle fans; whole polygons need the scanline rasterizer")]
+    #[error("{}: {}", self.key().unwrap_or("render"), self.problem())]
     WholePolygonsNeedScanline,
-    /// A mode of the scanline rasterizer was asked of the tiled one.
-    #[error("{0} needs the scanline rasterizer")]
+    /// A mode of the scanline rasterizer was asked of the tiled one: the
+    /// scene-file key of the mode.
+    #[error("{}: {}", self.key().unwrap_or("render"), self.problem())]
     ScanlineOnly(&'static str),
     /// The fixed-point fraction bits are out of range.
-    #[error(
-        "fixed-point fraction bits must be {MIN_FRACTION_BITS}..={MAX_FRACTION_BITS}, got {0}"
-    )]
+    #[error("{}: {}", self.key().unwrap_or("render"), self.problem())]
     FractionBits(u32),
     /// The palette run does not fit a 256-entry palette.
-    #[error("a palette needs 2..=256 shades with offset + shades ≤ 256, got {shades} shades at offset {offset}")]
+    #[error("{}: {}", self.key().unwrap_or("render"), self.problem())]
     Palette {
         /// Shades asked for.
         shades: u32,
         /// First entry asked for.
         offset: u32,
     },
+}
+
+impl RenderError {
+    /// The scene-file key an error of the options is about
+    /// (`render.width`, `render.fixed_point_bits`, ...); `None` for the
+    /// scene's own errors (camera, normals, non-finite values).
+    pub fn key(&self) -> Option<&'static str> {
+        match *self {
+            RenderError::ImageSize { width, height } => {
+                Some(if !(1..=MAX_IMAGE_SIDE).contains(&width) {
+                    "render.width"
+                } else if !(1..=MAX_IMAGE_SIDE).contains(&height) {
+                    "render.height"
+                } else {
+                    "render"
+                })
+            }
+            RenderError::WholePolygonsNeedScanline => Some("render.polygons"),
+            RenderError::ScanlineOnly(key) => Some(key),
+            RenderError::FractionBits(_) => Some("render.fixed_point_bits"),
+            RenderError::Palette { .. } => Some("render.palette_shades"),
+            RenderError::Camera(_)
+            | RenderError::NormalsMismatch { .. }
+            | RenderError::NonFinite(_) => None,
+        }
+    }
+
+    /// What is wrong, without the [`key`](RenderError::key).
+    pub fn problem(&self) -> String {
+        match *self {
+            RenderError::ImageSize { width, height } => match self.key() {
+                Some("render.width") => format!("must be 1..={MAX_IMAGE_SIDE}, got {width}"),
+                Some("render.height") => format!("must be 1..={MAX_IMAGE_SIDE}, got {height}"),
+                _ => format!("{width}x{height} exceeds {MAX_IMAGE_PIXELS} pixels"),
+            },
+            RenderError::WholePolygonsNeedScanline => {
+                "\"whole\" needs rasterizer = \"scanline\"; the tiled rasterizer draws fans".into()
+            }
+            RenderError::ScanlineOnly(_) => {
+                "needs rasterizer = \"scanline\"; the tiled rasterizer does not draw it".into()
+            }
+            RenderError::FractionBits(bits) => {
+                format!("must be {MIN_FRACTION_BITS}..={MAX_FRACTION_BITS}, got {bits}")
+            }
+            RenderError::Palette { shades, offset } => format!(
+                "needs 2..=256 shades with palette_offset + palette_shades ≤ 256, got {shades} at offset {offset}"
+            ),
+            _ => self.to_string(),
+        }
+    }
 }
 
 /// What a frame cost and what it did.
@@ -398,42 +495,7 @@ fn set_lighting(lighting: &mut Lighting, scene: &Scene, options: &RenderOptions)
 }
 
 pub(crate) fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
-    if options.rasterizer == Rasterizer::Tiled {
-        if options.polygons == Polygons::Whole {
-            return Err(RenderError::WholePolygonsNeedScanline);
-        }
-        if options.fixed_point_bits.is_some() {
-            return Err(RenderError::ScanlineOnly("fixed-point interpolation"));
-        }
-        if options.palette.is_some() {
-            return Err(RenderError::ScanlineOnly("the indexed palette"));
-        }
-    }
-    if let Some(bits) = options.fixed_point_bits {
-        if !(MIN_FRACTION_BITS..=MAX_FRACTION_BITS).contains(&bits) {
-            return Err(RenderError::FractionBits(bits));
-        }
-    }
-    if let Some(p) = options.palette {
-        if !p.is_valid() {
-            return Err(RenderError::Palette {
-                shades: p.shades,
-                offset: p.offset,
-            });
-        }
-    }
-    let (w, h) = (options.width, options.height);
-    if w == 0
-        || h == 0
-        || w > MAX_IMAGE_SIDE
-        || h > MAX_IMAGE_SIDE
-        || u64::from(w) * u64::from(h) > MAX_IMAGE_PIXELS
-    {
-        return Err(RenderError::ImageSize {
-            width: w,
-            height: h,
-        });
-    }
+    options.check()?;
     scene.camera.validate()?;
     // A maximum over all corners (no early exit, so the loop vectorizes),
     // in parallel: it runs every frame over every corner.

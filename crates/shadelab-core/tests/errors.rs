@@ -353,3 +353,98 @@ fn odd_but_valid_scenes_render() {
         }
     }
 }
+
+/// `RenderOptions::check` is the one check of the options: the scene file
+/// shows its errors as `key: problem`, exactly as `Display` does.
+#[test]
+fn option_errors_name_the_scene_file_key() {
+    use shadelab_core::{Palette, Polygons, Rasterizer};
+    let base = RenderOptions {
+        rasterizer: Rasterizer::Tiled,
+        ..options(64, 48, Shading::Phong)
+    };
+    let scanline = RenderOptions {
+        rasterizer: Rasterizer::Scanline,
+        ..base
+    };
+    let cases = [
+        (
+            RenderOptions { width: 0, ..base },
+            "render.width: must be 1..=16384, got 0",
+        ),
+        (
+            RenderOptions {
+                height: MAX_IMAGE_SIDE + 1,
+                ..base
+            },
+            "render.height: must be 1..=16384, got 16385",
+        ),
+        (
+            RenderOptions {
+                width: MAX_IMAGE_SIDE,
+                height: MAX_IMAGE_SIDE,
+                ..base
+            },
+            "render: 16384x16384 exceeds 67108864 pixels",
+        ),
+        (
+            RenderOptions {
+                polygons: Polygons::Whole,
+                ..base
+            },
+            "render.polygons: \"whole\" needs rasterizer = \"scanline\"; the tiled rasterizer draws fans",
+        ),
+        (
+            RenderOptions {
+                fixed_point_bits: Some(99),
+                ..base
+            },
+            "render.fixed_point_bits: must be 1..=30, got 99",
+        ),
+        (
+            RenderOptions {
+                fixed_point_bits: Some(8),
+                ..base
+            },
+            "render.fixed_point_bits: needs rasterizer = \"scanline\"; the tiled rasterizer does not draw it",
+        ),
+        (
+            RenderOptions {
+                palette: Some(Palette {
+                    shades: 1,
+                    offset: 0,
+                }),
+                ..scanline
+            },
+            "render.palette_shades: needs 2..=256 shades with palette_offset + palette_shades ≤ 256, got 1 at offset 0",
+        ),
+        (
+            RenderOptions {
+                palette: Some(Palette {
+                    shades: 8,
+                    offset: 0,
+                }),
+                ..base
+            },
+            "render.palette_shades: needs rasterizer = \"scanline\"; the tiled rasterizer does not draw it",
+        ),
+    ];
+    for (options, expected) in cases {
+        let e = options.check().unwrap_err();
+        assert_eq!(e.to_string(), expected);
+        assert_eq!(format!("{}: {}", e.key().unwrap(), e.problem()), expected);
+        assert_eq!(
+            render(&good_scene(), &options).unwrap_err(),
+            e,
+            "{expected}"
+        );
+    }
+    base.check().unwrap();
+    RenderOptions {
+        fixed_point_bits: Some(8),
+        polygons: Polygons::Whole,
+        ..scanline
+    }
+    .check()
+    .unwrap();
+}

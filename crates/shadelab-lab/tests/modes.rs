@@ -104,7 +104,7 @@ fn scanline_only_modes_are_typed_errors_for_the_tiled_rasterizer() {
     });
     assert_eq!(
         render(&scene, &RenderOptions { palette, ..tiled }).unwrap_err(),
-        RenderError::ScanlineOnly("the indexed palette")
+        RenderError::ScanlineOnly("render.palette_shades")
     );
     assert_eq!(
         render(
@@ -115,7 +115,7 @@ fn scanline_only_modes_are_typed_errors_for_the_tiled_rasterizer() {
             }
         )
         .unwrap_err(),
-        RenderError::ScanlineOnly("fixed-point interpolation")
+        RenderError::ScanlineOnly("render.fixed_point_bits")
     );
     let scanline = options(32, 32, Shading::Gouraud);
     assert_eq!(

@@ -6,11 +6,9 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use shadelab_core::limits::{MAX_MODEL_COORDINATE_WITH_CAMERA, MAX_SCENE_COORDINATE};
-use shadelab_core::raster::scanline::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
 use shadelab_core::{
     builtin_model, builtin_model_info, vertex_normals, Camera, CornerNormals, Light, LightKind,
-    Material, Mesh, NormalWeighting, Palette, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8,
-    Scene, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE,
+    Material, Mesh, NormalWeighting, Palette, Rasterizer, RenderOptions, Rgb, Rgb8, Scene,
 };
 use shadelab_core::{escape_token, format_number};
 
@@ -106,20 +104,6 @@ impl SceneFile {
         let r = &self.render;
         let width = r.width.unwrap_or(800);
         let height = r.height.unwrap_or(600);
-        for (key, v) in [("render.width", width), ("render.height", height)] {
-            if v == 0 || v > MAX_IMAGE_SIDE {
-                return Err(value_error(
-                    key,
-                    format!("must be 1..={MAX_IMAGE_SIDE}, got {v}"),
-                ));
-            }
-        }
-        if u64::from(width) * u64::from(height) > MAX_IMAGE_PIXELS {
-            return Err(value_error(
-                "render",
-                format!("{width}x{height} exceeds {MAX_IMAGE_PIXELS} pixels"),
-            ));
-        }
         let options = RenderOptions {
             width,
             height,
@@ -129,18 +113,7 @@ impl SceneFile {
             gouraud_specular: r.gouraud_specular.unwrap_or(false),
             interpolation: r.interpolation.unwrap_or_default(),
             polygons: r.polygons.unwrap_or_default(),
-            rasterizer: match (r.rasterizer, r.polygons) {
-                (Some(Rasterizer::Tiled), Some(Polygons::Whole)) => {
-                    return Err(value_error(
-                        "render.polygons",
-                        "\"whole\" needs rasterizer = \"scanline\"; the tiled rasterizer draws fans"
-                            .to_string(),
-                    ));
-                }
-                (Some(rasterizer), _) => rasterizer,
-                (None, Some(Polygons::Whole)) => Rasterizer::Scanline,
-                (None, _) => Rasterizer::Tiled,
-            },
+            rasterizer: r.rasterizer.unwrap_or_default(),
             specular: r.specular.unwrap_or_default(),
             fixed_point_bits: r.fixed_point_bits,
             palette: match (r.palette_shades, r.palette_offset) {
@@ -158,42 +131,15 @@ impl SceneFile {
             },
         };
         let mut options = options;
-        if let Some(bits) = options.fixed_point_bits {
-            if !(MIN_FRACTION_BITS..=MAX_FRACTION_BITS).contains(&bits) {
-                return Err(value_error(
-                    "render.fixed_point_bits",
-                    format!("must be {MIN_FRACTION_BITS}..={MAX_FRACTION_BITS}, got {bits}"),
-                ));
-            }
+        // Modes only the scanline rasterizer draws choose it unless the file
+        // insists on the tiled one (which the check then refuses).
+        if options.needs_scanline() && r.rasterizer.is_none() {
+            options.rasterizer = Rasterizer::Scanline;
         }
-        if let Some(p) = options.palette {
-            if !p.is_valid() {
-                return Err(value_error(
-                    "render.palette_shades",
-                    format!(
-                        "needs 2..=256 shades with palette_offset + palette_shades ≤ 256, got {} at offset {}",
-                        p.shades, p.offset
-                    ),
-                ));
-            }
-        }
-        // Modes only the scanline rasterizer draws choose it unless the file insists.
-        if options.needs_scanline() {
-            match r.rasterizer {
-                Some(Rasterizer::Tiled) => {
-                    let key = if r.fixed_point_bits.is_some() {
-                        "render.fixed_point_bits"
-                    } else {
-                        "render.palette_shades"
-                    };
-                    return Err(value_error(
-                        key,
-                        "needs rasterizer = \"scanline\"; the tiled rasterizer does not draw it",
-                    ));
-                }
-                _ => options.rasterizer = Rasterizer::Scanline,
-            }
-        }
+        // The one check of the options, shared with every other caller.
+        options
+            .check()
+            .map_err(|e| value_error(e.key().unwrap_or("render"), e.problem()))?;
         Ok(options)
     }
 
