@@ -34,8 +34,7 @@ mod scene;
 
 use export::export;
 use report::{json, Machine};
-pub use scene::standard_scene;
-use scene::{full_screen_quad, load_models, BACKGROUND};
+use scene::{full_screen_quad, load_models, standard_scene, BACKGROUND};
 
 /// `shadelab bench`
 #[derive(Debug, Args)]

@@ -104,7 +104,7 @@ impl SceneFile {
         let r = &self.render;
         let width = r.width.unwrap_or(800);
         let height = r.height.unwrap_or(600);
-        let options = RenderOptions {
+        let mut options = RenderOptions {
             width,
             height,
             shading: r.shading.unwrap_or_default(),
@@ -130,7 +130,6 @@ impl SceneFile {
                 }),
             },
         };
-        let mut options = options;
         // Modes only the scanline rasterizer draws choose it unless the file
         // insists on the tiled one (which the check then refuses).
         if options.needs_scanline() && r.rasterizer.is_none() {
