@@ -13,8 +13,8 @@ pub mod choice;
 mod camera;
 mod clip;
 mod color;
+mod frame;
 mod image;
-mod lighting;
 pub mod limits;
 mod mesh;
 mod models;
@@ -22,19 +22,17 @@ mod normals;
 mod palette;
 mod probe;
 pub mod raster;
-mod render;
+mod scene;
+mod shade;
 mod simd;
 mod text;
-mod tiled;
 
 pub use camera::{Camera, CameraError};
 pub use choice::{Choice, UnknownChoice};
 pub use clip::{clip_polygon, ClipVertex};
 pub use color::{Rgb, Rgb8};
+pub use frame::{coverage, render, Renderer};
 pub use image::Image;
-pub use lighting::{
-    Light, LightKind, LightTerm, Lighting, LightingTerms, Material, Specular, Terms,
-};
 pub use limits::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 pub use mesh::{CornerNormals, Mesh, MeshError};
 pub use models::{builtin_model, builtin_model_info, ModelError, ModelInfo, BUILTIN_MODELS};
@@ -46,10 +44,11 @@ pub use probe::{
     depth_buffer, probe, EdgeRecord, FragmentRecord, ProbeRequest, SpanRecord, SteppedRecord,
     VertexRecord,
 };
+pub use raster::to_window;
 pub use raster::Interpolation;
-pub use render::{
-    coverage, render, to_window, Polygons, Rasterizer, RenderError, RenderOptions, RenderStats,
-    Renderer, Scene, Shading,
+pub use scene::{Polygons, Rasterizer, RenderError, RenderOptions, RenderStats, Scene};
+pub use shade::{
+    Light, LightKind, LightTerm, Lighting, LightingTerms, Material, Shading, Specular, Terms,
 };
 pub use simd::SimdLevel;
 pub use text::{escape_message, escape_token, format_number, is_unsafe_char};

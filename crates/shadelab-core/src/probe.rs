@@ -11,11 +11,12 @@
 //! was drawn; teaching instruments build their explanations on it.
 
 use crate::color::{Rgb, Rgb8};
+use crate::frame::{lighting, validate};
+use crate::raster::scanline::{draw, Target};
 use crate::raster::scanline::{SpanTrace, Varyings};
 use crate::raster::{Interpolation, SUBPIXEL_ONE};
-use crate::render::{
-    draw, lighting, validate, Rasterizer, RenderError, RenderOptions, Scene, Target,
-};
+use crate::scene::{Rasterizer, RenderError, RenderOptions, Scene};
+use crate::shade::Shading;
 
 /// Which pixels to watch.
 #[derive(Debug, Clone, Copy)]
@@ -320,7 +321,7 @@ impl Target for DepthTarget {
 pub fn depth_buffer(scene: &Scene, options: &RenderOptions) -> Result<Vec<f32>, RenderError> {
     let options = RenderOptions {
         rasterizer: Rasterizer::Scanline,
-        shading: crate::render::Shading::Flat,
+        shading: Shading::Flat,
         palette: None,
         ..*options
     };

@@ -6,6 +6,29 @@
 //! rasterizers fed the same vertices agree on every pixel.
 
 pub mod scanline;
+pub(crate) mod tiled;
+
+use crate::clip::ClipVertex;
+use crate::image::Image;
+use crate::scene::{RenderOptions, RenderStats, Scene};
+use crate::shade::Lighting;
+
+/// What the frame asks of a rasterizer, given a checked scene and the
+/// frame's lighting: both rasterizers implement it, and the frame
+/// (`frame.rs`) knows no more of them.
+pub(crate) trait Rasterize {
+    /// Draws `scene` into `image` (already of the options' size).
+    fn render(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        lighting: &Lighting,
+        image: &mut Image,
+    ) -> RenderStats;
+    /// How many polygons cover each pixel, row by row, with no depth test.
+    fn coverage(&mut self, scene: &Scene, options: &RenderOptions, lighting: &Lighting)
+        -> Vec<u32>;
+}
 
 /// Bits of sub-pixel precision in snapped window coordinates.
 pub const SUBPIXEL_BITS: u32 = 8;
@@ -205,5 +228,30 @@ impl Fan {
                 polygon[(self.apex + k + 1) % n],
             ]
         })
+    }
+}
+
+/// pixels, so snapped edge arithmetic fits in `i64` with room to spare.
+pub(crate) fn guard_band(width: u32, height: u32) -> f32 {
+    ((1u32 << 20) as f32 / width.max(height) as f32 - 1.0).max(1.0)
+}
+
+/// The perspective divide and viewport transform, then snapping: where a
+/// clip-space vertex lands in the window, as both rasterizers place it.
+pub fn to_window<const N: usize>(v: &ClipVertex<N>, width: u32, height: u32) -> ScreenVertex<N> {
+    let inv_w = 1.0 / f64::from(v.clip.w);
+    let x = (f64::from(v.clip.x) * inv_w + 1.0) * 0.5 * f64::from(width);
+    let y = (1.0 - f64::from(v.clip.y) * inv_w) * 0.5 * f64::from(height);
+    let depth = (f64::from(v.clip.z) * inv_w + 1.0) * 0.5;
+    // Clipping keeps vertices within the guard band (±2^19 pixels) unless an
+    // edge's ends are both so far away (beyond about 1e20) that f32 cannot
+    // place the cut; the clamp keeps the edge arithmetic from overflowing then.
+    let limit = f64::from(1u32 << 21);
+    ScreenVertex {
+        x: snap(x.clamp(-limit, limit)),
+        y: snap(y.clamp(-limit, limit)),
+        depth: depth as f32,
+        inv_w: inv_w as f32,
+        attrs: v.attrs,
     }
 }

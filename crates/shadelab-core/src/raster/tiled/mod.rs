@@ -42,7 +42,6 @@
 
 mod band;
 mod setup;
-mod shade;
 
 use std::collections::HashMap;
 use std::sync::{Mutex, MutexGuard};
@@ -52,14 +51,16 @@ use rayon::prelude::*;
 
 use self::band::{band_rows, Band, Pass};
 use self::setup::{plane_count, Plane, Triangle, BAND_ROWS};
-use self::shade::{FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS};
 use crate::clip::{clip_polygon, is_inside, ClipVertex};
 use crate::color::Rgb8;
 use crate::image::Image;
-use crate::lighting::{Lighting, Terms};
 use crate::normals::face_normal;
 use crate::raster::{fan, signed_area_ccw, ScreenVertex};
-use crate::render::{guard_band, to_window, RenderOptions, RenderStats, Scene, Shading};
+use crate::raster::{guard_band, to_window, Rasterize};
+use crate::scene::{RenderOptions, RenderStats, Scene};
+use crate::shade::{
+    byte_units, FlatShader, GouraudShader, Lighting, PhongShader, Shader, Shading, Terms, MAX_ATTRS,
+};
 use crate::simd::{dispatch, prefetch, Kernel, Simd, SimdLevel, Vf};
 
 /// How many polygons ahead setup starts loading a polygon's vertices.
@@ -84,7 +85,7 @@ pub(crate) struct TiledRasterizer {
     vertices: VertexTable,
     faces: FaceNormals,
     /// Gouraud colours per distinct vertex, front and (culling off) back,
-    /// clamped to [0, 1] and kept in byte units ([`shade::byte_units`]).
+    /// clamped to [0, 1] and kept in byte units ([`byte_units`]).
     lit: Vec<[f32; 3]>,
     lit_back: Vec<[f32; 3]>,
     chunks: Vec<Chunk>,
@@ -648,7 +649,7 @@ impl Kernel for VertexKernel<'_> {
             let mut out = [[0f32; 8]; 3];
             for k in 0..3 {
                 let c = rgb[k].max(Vf::splat(s, 0.0)).min(Vf::splat(s, 1.0));
-                shade::byte_units(c).store(&mut out[k]);
+                byte_units(c).store(&mut out[k]);
             }
             for (i, color) in colors.iter_mut().enumerate() {
                 *color = [out[0][i], out[1][i], out[2][i]];
@@ -846,9 +847,11 @@ impl TiledRasterizer {
     pub fn simd(&self) -> SimdLevel {
         self.simd
     }
+}
 
+impl Rasterize for TiledRasterizer {
     /// Draws a validated scene into `image` (already of the right size).
-    pub fn render(
+    fn render(
         &mut self,
         scene: &Scene,
         options: &RenderOptions,
@@ -892,7 +895,7 @@ impl TiledRasterizer {
     }
 
     /// How many triangles cover each pixel, with no depth test.
-    pub fn coverage(
+    fn coverage(
         &mut self,
         scene: &Scene,
         options: &RenderOptions,
@@ -925,7 +928,9 @@ impl TiledRasterizer {
             });
         counts
     }
+}
 
+impl TiledRasterizer {
     /// Vertex stage, then setup and binning; leaves the bins in `self.chunks`.
     fn geometry(
         &mut self,

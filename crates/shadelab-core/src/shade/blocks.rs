@@ -15,8 +15,7 @@
 
 use glam::Vec3;
 
-use super::setup::Triangle;
-use crate::lighting::{LightKind, Lighting, Specular};
+use super::model::{LightKind, Lighting, Specular};
 use crate::simd::{pow_unit, pow_whole, pow_whole_groups, Simd, Vf, Vi};
 
 /// The most attributes a method interpolates (Phong: normal and position).
@@ -51,12 +50,15 @@ pub(crate) trait Shader: Sync {
     ) -> [Vi<S>; 2] {
         [self.light(lanes, s, a), self.light(lanes, s, b)]
     }
-    /// Colours of 8 fragments, packed `r | g << 8 | b << 16`.
+    /// Colours of 8 fragments of one triangle, packed `r | g << 8 | b << 16`:
+    /// `color` is the triangle's flat colour (packed), `flip` −1 for a back
+    /// face drawn with culling off (its normals turn), else 1.
     fn shade<S: Simd>(
         &self,
         lanes: &Self::Lanes<S>,
         s: S,
-        triangle: &Triangle,
+        color: u32,
+        flip: f32,
         attrs: &[Vf<S>; MAX_ATTRS],
     ) -> Vi<S>;
 }
@@ -70,8 +72,8 @@ impl Shader for FlatShader {
     #[inline(always)]
     fn lanes<S: Simd>(&self, _: S) {}
     #[inline(always)]
-    fn shade<S: Simd>(&self, _: &(), s: S, triangle: &Triangle, _: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        Vi::splat(s, triangle.color as i32)
+    fn shade<S: Simd>(&self, _: &(), s: S, color: u32, _: f32, _: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
+        Vi::splat(s, color as i32)
     }
 }
 
@@ -95,7 +97,7 @@ impl Shader for GouraudShader {
     /// The interpolated colours are in byte units plus one half (see
     /// [`byte_units`]): only truncation and saturation are left.
     #[inline(always)]
-    fn shade<S: Simd>(&self, _: &(), _: S, _: &Triangle, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
+    fn shade<S: Simd>(&self, _: &(), _: S, _: u32, _: f32, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
         Vf::to_bytes(a[0], a[1], a[2])
     }
 }
@@ -239,8 +241,7 @@ impl Shader for PhongShader {
         PhongShader::light(self, s, a)
     }
     #[inline(always)]
-    fn shade<S: Simd>(&self, _: &(), s: S, triangle: &Triangle, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        let flip = triangle.flip;
+    fn shade<S: Simd>(&self, _: &(), s: S, _: u32, flip: f32, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
         self.light(
             s,
             &[a[0] * flip, a[1] * flip, a[2] * flip, a[3], a[4], a[5]],
@@ -389,10 +390,11 @@ impl Shader for OnePointLight {
         &self,
         k: &OneLightLanes<S>,
         s: S,
-        t: &Triangle,
+        _: u32,
+        flip: f32,
         a: &[Vf<S>; MAX_ATTRS],
     ) -> Vi<S> {
-        self.lit(k, s, t.flip, a)
+        self.lit(k, s, flip, a)
     }
 }
 

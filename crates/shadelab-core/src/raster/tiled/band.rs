@@ -46,8 +46,8 @@
 use std::ops::Range;
 
 use super::setup::{plane_count, Plane, Triangle, Walk, BAND_ROWS};
-use super::shade::{Shader, MAX_ATTRS};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
+use crate::shade::{Shader, MAX_ATTRS};
 use crate::simd::{Simd, Vf, Vi};
 
 /// A band's working storage, kept between frames.
@@ -444,7 +444,9 @@ impl Band {
             return;
         }
         let attrs = interpolate(s, f, x, |j| Vf::splat(s, row.values[j]));
-        let colors = f.shader.shade(f.shader_lanes, s, f.t, &attrs);
+        let colors = f
+            .shader
+            .shade(f.shader_lanes, s, f.t.color, f.t.flip, &attrs);
         let color_slot: &mut [i32; 8] = (&mut self.color[at..at + 8]).try_into().unwrap();
         let old = Vi(s.i_load(color_slot), s);
         s.i_store(Vi::select(pass, colors, old).0, color_slot);

@@ -38,6 +38,10 @@
 //! edges going down the screen bound spans on the left and edges going up
 //! bound them on the right.
 
+mod draw;
+
+pub(crate) use self::draw::{draw, ScanlineRasterizer, Target};
+
 use super::{
     fan, is_convex, signed_area_ccw, FragmentSink, Interpolation, ScreenVertex, SUBPIXEL_HALF,
     SUBPIXEL_ONE,

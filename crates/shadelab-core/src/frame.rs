@@ -1,0 +1,203 @@
+//! The frame: checks a request, sets up the frame's lighting and hands the
+//! scene to the rasterizer it names. Both rasterizers implement
+//! [`Rasterize`]; everything they share below the frame (window transform,
+//! snapping, fans) lives in `raster/`, the shading methods in `shade/`.
+//!
+//! Facing is decided from the snapped window polygon, as OpenGL does. A
+//! back-facing polygon drawn with culling off is lit with its normals turned
+//! towards the viewer and re-wound, so the rasterizers only ever see
+//! counter-clockwise polygons.
+//!
+//! Two modes of old hardware are drawn by the scanline rasterizer only:
+//! fixed-point attribute stepping ([`RenderOptions::fixed_point_bits`]) and
+//! the indexed palette ([`RenderOptions::palette`]). A probe (`probe.rs`)
+//! watches one frame through the scanline rasterizer's `Target` hooks,
+//! which default to nothing.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::color::Rgb;
+use crate::image::Image;
+use crate::raster::scanline::ScanlineRasterizer;
+use crate::raster::tiled::TiledRasterizer;
+use crate::raster::Rasterize;
+use crate::scene::{Rasterizer, RenderError, RenderOptions, RenderStats, Scene};
+use crate::shade::{LightKind, Lighting, Material, Specular};
+use crate::simd::SimdLevel;
+
+/// Renders a frame: [`Renderer::render_into`] with a new renderer and image.
+///
+/// # Errors
+/// [`RenderError`] when the options, camera, normals or lighting are invalid.
+pub fn render(scene: &Scene, options: &RenderOptions) -> Result<(Image, RenderStats), RenderError> {
+    let mut image = Image::filled(1, 1, options.background);
+    let stats = Renderer::new().render_into(scene, options, &mut image)?;
+    Ok((image, stats))
+}
+
+/// How many polygons cover each pixel, row by row, with no depth test: the
+/// geometry stage of [`render`] with the colour left out. A closed convex
+/// mesh seen from outside covers its silhouette exactly once.
+///
+/// # Errors
+/// As [`render`].
+pub fn coverage(scene: &Scene, options: &RenderOptions) -> Result<Vec<u32>, RenderError> {
+    Renderer::new().coverage(scene, options)
+}
+
+/// Renders frames, keeping its working buffers from one frame to the next
+/// (the tiled rasterizer allocates nothing per frame once warmed up).
+///
+/// Work is spread over rayon's current thread pool; run it inside
+/// `ThreadPool::install` to choose the number of threads.
+#[derive(Debug)]
+pub struct Renderer {
+    tiled: TiledRasterizer,
+    scanline: ScanlineRasterizer,
+    /// The frame's lighting, rebuilt in place each frame.
+    lighting: Lighting,
+}
+
+impl Default for Renderer {
+    fn default() -> Renderer {
+        Renderer::new()
+    }
+}
+
+impl Renderer {
+    /// A renderer using the best SIMD level of this CPU.
+    pub fn new() -> Renderer {
+        Renderer::with_simd(SimdLevel::detect())
+    }
+
+    /// A renderer using `level` (or the portable path if the CPU lacks it).
+    pub fn with_simd(level: SimdLevel) -> Renderer {
+        Renderer {
+            tiled: TiledRasterizer::new(level),
+            scanline: ScanlineRasterizer,
+            lighting: Lighting {
+                ambient: Rgb::default(),
+                lights: Vec::new(),
+                material: Material::default(),
+                eye: Vec3::ZERO,
+                specular: Specular::default(),
+            },
+        }
+    }
+
+    /// The SIMD level the tiled rasterizer uses.
+    pub fn simd(&self) -> SimdLevel {
+        self.tiled.simd()
+    }
+
+    /// Renders `scene` into `image`, which is replaced by a new image when
+    /// its size is not the requested one.
+    ///
+    /// # Errors
+    /// [`RenderError`] when the options, camera, normals or lighting are invalid.
+    pub fn render_into(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        image: &mut Image,
+    ) -> Result<RenderStats, RenderError> {
+        validate(scene, options)?;
+        if image.width() != options.width || image.height() != options.height {
+            *image = Image::filled(options.width, options.height, options.background);
+        }
+        set_lighting(&mut self.lighting, scene, options);
+        let rasterizer = pick(&mut self.tiled, &mut self.scanline, options.rasterizer);
+        Ok(rasterizer.render(scene, options, &self.lighting, image))
+    }
+
+    /// How many polygons cover each pixel, row by row, with no depth test.
+    ///
+    /// # Errors
+    /// As [`Renderer::render_into`].
+    pub fn coverage(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+    ) -> Result<Vec<u32>, RenderError> {
+        validate(scene, options)?;
+        let lighting = lighting(scene, options);
+        let rasterizer = pick(&mut self.tiled, &mut self.scanline, options.rasterizer);
+        Ok(rasterizer.coverage(scene, options, &lighting))
+    }
+}
+
+/// The rasterizer `which` of a renderer's two.
+fn pick<'a>(
+    tiled: &'a mut TiledRasterizer,
+    scanline: &'a mut ScanlineRasterizer,
+    which: Rasterizer,
+) -> &'a mut dyn Rasterize {
+    match which {
+        Rasterizer::Tiled => tiled,
+        Rasterizer::Scanline => scanline,
+    }
+}
+
+/// The lighting of `scene` drawn with `options`.
+pub(crate) fn lighting(scene: &Scene, options: &RenderOptions) -> Lighting {
+    let mut lighting = Lighting {
+        ambient: scene.ambient,
+        lights: Vec::new(),
+        material: scene.material,
+        eye: scene.camera.eye,
+        specular: options.specular,
+    };
+    set_lighting(&mut lighting, scene, options);
+    lighting
+}
+
+/// Makes `lighting` the scene's, reusing its list of lights.
+fn set_lighting(lighting: &mut Lighting, scene: &Scene, options: &RenderOptions) {
+    lighting.ambient = scene.ambient;
+    lighting.lights.clear();
+    lighting.lights.extend_from_slice(&scene.lights);
+    lighting.material = scene.material;
+    lighting.eye = scene.camera.eye;
+    lighting.specular = options.specular;
+}
+
+pub(crate) fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
+    options.check()?;
+    scene.camera.validate()?;
+    // A maximum over all corners (no early exit, so the loop vectorizes),
+    // in parallel: it runs every frame over every corner.
+    let largest = scene
+        .normals
+        .corner
+        .par_chunks(1 << 15)
+        .map(|chunk| chunk.iter().fold(0, |m, &i| m.max(i)))
+        .max()
+        .unwrap_or(0);
+    if scene.normals.corner.len() != scene.mesh.corners().len()
+        || (!scene.normals.corner.is_empty() && largest as usize >= scene.normals.normals.len())
+    {
+        return Err(RenderError::NormalsMismatch {
+            normals: scene.normals.corner.len(),
+            corners: scene.mesh.corners().len(),
+        });
+    }
+    let m = &scene.material;
+    let rgb_finite = |c: Rgb| c.to_array().iter().all(|v| v.is_finite());
+    if !rgb_finite(scene.ambient) {
+        return Err(RenderError::NonFinite("ambient"));
+    }
+    if !(rgb_finite(m.ka) && rgb_finite(m.kd) && rgb_finite(m.ks) && m.shininess.is_finite()) {
+        return Err(RenderError::NonFinite("material"));
+    }
+    for light in &scene.lights {
+        let position_ok = match light.kind {
+            LightKind::Point { position } => position.is_finite(),
+            LightKind::Directional { direction } => direction.is_finite(),
+        };
+        if !(position_ok && rgb_finite(light.color) && light.intensity.is_finite()) {
+            return Err(RenderError::NonFinite("light"));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,317 @@
+//! The scanline rasterizer's frame: clip, project and rasterize each
+//! polygon in order, through a shading method (`shade::scalar`) into a
+//! [`Target`] (the image and depth buffer, a coverage counter, or a probe).
+
+use glam::{Mat4, Vec4};
+
+use super::{rasterize_fan_with, rasterize_polygon_with, ScanlineOptions, SpanTrace};
+use crate::clip::{clip_polygon, ClipVertex};
+use crate::color::{Rgb, Rgb8};
+use crate::image::Image;
+use crate::normals::face_normals;
+use crate::raster::{
+    guard_band, signed_area_ccw, to_window, FragmentSink, Rasterize, ScreenVertex,
+};
+use crate::scene::{Polygons, RenderOptions, RenderStats, Scene};
+use crate::shade::{
+    with_method, Indexed, Lighting, Method, MethodVisitor, Output, SceneRefs, Shading, TrueColor,
+};
+
+/// Where fragments go: a depth test, then (if it passes) a colour.
+///
+/// The other methods are hooks for a probe; their defaults do nothing and
+/// cost nothing.
+pub(crate) trait Target {
+    /// Depth-tests pixel (`x`, `y`); true when it should be shaded and written.
+    fn test(&mut self, x: u32, y: u32, depth: f32) -> bool;
+    /// Writes the shaded colour of a pixel that passed [`Target::test`].
+    fn write(&mut self, x: u32, y: u32, color: Rgb8);
+    /// Polygon `face` is about to be rasterized (`back`: seen from behind).
+    #[inline(always)]
+    fn polygon(&mut self, _face: usize, _back: bool) {}
+    /// Whether the rasterizer should trace its spans on row `y`.
+    #[inline(always)]
+    fn wants_trace(&self, _y: u32) -> bool {
+        false
+    }
+    /// A traced span, before its fragments.
+    #[inline(always)]
+    fn trace<const N: usize>(&mut self, _span: &SpanTrace<'_, N>) {}
+    /// Pixel (`x`, `y`) passed the test with interpolated attributes
+    /// `attrs`, the method lit it `lit` (unclamped) and it became `color`.
+    #[inline(always)]
+    fn shaded<const N: usize>(
+        &mut self,
+        _x: u32,
+        _y: u32,
+        _attrs: &[f32; N],
+        _lit: Rgb,
+        _color: Rgb8,
+    ) {
+    }
+}
+
+/// The reference rasterizer: one thread, polygon after polygon, span after
+/// span (`mod.rs`), every mode of old hardware included.
+#[derive(Debug, Default)]
+pub(crate) struct ScanlineRasterizer;
+
+impl Rasterize for ScanlineRasterizer {
+    fn render(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        lighting: &Lighting,
+        image: &mut Image,
+    ) -> RenderStats {
+        let mut frame = Frame {
+            color: std::mem::replace(image, Image::filled(1, 1, options.background)),
+            depth: vec![1.0; options.width as usize * options.height as usize],
+            width: options.width,
+        };
+        frame.color.pixels_mut().fill(options.background);
+        let mut stats = draw(scene, options, lighting, &mut frame);
+        stats.covered_pixels = frame.depth.iter().filter(|&&d| d < 1.0).count() as u64;
+        *image = frame.color;
+        stats
+    }
+
+    fn coverage(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        lighting: &Lighting,
+    ) -> Vec<u32> {
+        let mut counter = CoverageCounter {
+            counts: vec![0; options.width as usize * options.height as usize],
+            width: options.width,
+        };
+        let options = RenderOptions {
+            shading: Shading::Flat,
+            ..*options
+        };
+        draw(scene, &options, lighting, &mut counter);
+        counter.counts
+    }
+}
+
+struct Frame {
+    color: Image,
+    depth: Vec<f32>,
+    width: u32,
+}
+
+impl Target for Frame {
+    fn test(&mut self, x: u32, y: u32, depth: f32) -> bool {
+        let d = &mut self.depth[y as usize * self.width as usize + x as usize];
+        // Depth test "less", and the near/far clip keeps depth within [0, 1].
+        if depth < *d {
+            *d = depth;
+            true
+        } else {
+            false
+        }
+    }
+
+    fn write(&mut self, x: u32, y: u32, color: Rgb8) {
+        self.color.set_pixel(x, y, color);
+    }
+}
+
+struct CoverageCounter {
+    counts: Vec<u32>,
+    width: u32,
+}
+
+impl Target for CoverageCounter {
+    fn test(&mut self, x: u32, y: u32, _depth: f32) -> bool {
+        self.counts[y as usize * self.width as usize + x as usize] += 1;
+        false
+    }
+
+    fn write(&mut self, _x: u32, _y: u32, _color: Rgb8) {}
+}
+
+/// Connects the rasterizer to a target and a shading method.
+struct ShadingSink<'a, const N: usize, M, T, O> {
+    method: &'a mut M,
+    target: &'a mut T,
+    shaded: u64,
+    output: O,
+}
+
+impl<const N: usize, M: Method<N>, T: Target, O: Output> FragmentSink<N>
+    for ShadingSink<'_, N, M, T, O>
+{
+    // Inlined into the span loop, as it was before the probe's hooks made
+    // it look bigger to the compiler (the hooks compile to nothing).
+    #[inline]
+    fn fragment(&mut self, x: u32, y: u32, depth: f32, attrs: &[f32; N]) {
+        if self.target.test(x, y, depth) {
+            self.shaded += 1;
+            let lit = self.method.shade(attrs);
+            let color = self.output.pixel(&*self.method, lit);
+            self.target.shaded(x, y, attrs, lit, color);
+            self.target.write(x, y, color);
+        }
+    }
+
+    #[inline(always)]
+    fn wants_trace(&self, y: u32) -> bool {
+        self.target.wants_trace(y)
+    }
+
+    #[inline(always)]
+    fn trace(&mut self, span: &SpanTrace<'_, N>) {
+        self.target.trace(span);
+    }
+}
+
+/// The guard band, in NDC units, that keeps window coordinates within ±2^20
+
+/// Draws a frame with the scanline rasterizer into `target`.
+pub(crate) fn draw(
+    scene: &Scene,
+    options: &RenderOptions,
+    lighting: &Lighting,
+    target: &mut impl Target,
+) -> RenderStats {
+    let aspect = options.width as f32 / options.height as f32;
+    let view_projection = scene.camera.projection(aspect) * scene.camera.view();
+    let refs = SceneRefs {
+        mesh: &scene.mesh,
+        normals: &scene.normals,
+        faces: face_normals(&scene.mesh),
+        lighting: lighting.clone(),
+    };
+    let draw = Draw {
+        scene: &refs,
+        options,
+        view_projection,
+        target,
+    };
+    with_method(options.shading, options.gouraud_specular, &refs, draw)
+}
+
+/// [`draw_with`] waiting for its method.
+struct Draw<'a, T> {
+    scene: &'a SceneRefs<'a>,
+    options: &'a RenderOptions,
+    view_projection: Mat4,
+    target: &'a mut T,
+}
+
+impl<T: Target> MethodVisitor for Draw<'_, T> {
+    type Out = RenderStats;
+    fn visit<const N: usize, M: Method<N>>(self, method: &mut M) -> RenderStats {
+        draw_with(
+            self.scene,
+            self.options,
+            self.view_projection,
+            method,
+            self.target,
+        )
+    }
+}
+
+/// Rasterizes one window polygon through the method into the target;
+/// returns the fragments shaded.
+fn fill<const N: usize, M: Method<N>, T: Target, O: Output>(
+    window: &[ScreenVertex<N>],
+    options: &RenderOptions,
+    walk: &ScanlineOptions,
+    method: &mut M,
+    target: &mut T,
+    output: O,
+) -> u64 {
+    let (width, height) = (options.width, options.height);
+    let mut sink = ShadingSink {
+        method,
+        target,
+        shaded: 0,
+        output,
+    };
+    match options.polygons {
+        Polygons::Fans => rasterize_fan_with(window, width, height, walk, &mut sink),
+        Polygons::Whole => rasterize_polygon_with(window, width, height, walk, &mut sink),
+    }
+    sink.shaded
+}
+
+fn draw_with<const N: usize, M: Method<N>, T: Target>(
+    scene: &SceneRefs<'_>,
+    options: &RenderOptions,
+    view_projection: Mat4,
+    method: &mut M,
+    target: &mut T,
+) -> RenderStats {
+    let (width, height) = (options.width, options.height);
+    let mesh = scene.mesh;
+    let clip_positions: Vec<Vec4> = mesh
+        .positions()
+        .iter()
+        .map(|p| view_projection * p.extend(1.0))
+        .collect();
+    let guard = guard_band(width, height);
+    let mut stats = RenderStats {
+        polygons: mesh.polygon_count() as u64,
+        ..RenderStats::default()
+    };
+    let (mut input, mut clipped, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
+    let mut window: Vec<ScreenVertex<N>> = Vec::new();
+    let mut shaded = 0;
+    let walk = ScanlineOptions {
+        interpolation: options.interpolation,
+        fraction_bits: options.fixed_point_bits,
+    };
+
+    let mut project =
+        |method: &mut M, face: usize, back: bool, window: &mut Vec<ScreenVertex<N>>| {
+            input.clear();
+            for c in mesh.corner_range(face) {
+                let vertex = mesh.corners()[c];
+                input.push(ClipVertex {
+                    clip: clip_positions[vertex as usize],
+                    attrs: method.corner(c, vertex, back),
+                });
+            }
+            clip_polygon(&input, guard, &mut clipped, &mut scratch);
+            window.clear();
+            window.extend(clipped.iter().map(|v| to_window(v, width, height)));
+        };
+
+    for face in 0..mesh.polygon_count() {
+        if scene.faces[face].is_none() {
+            stats.degenerate += 1;
+            continue;
+        }
+        project(method, face, false, &mut window);
+        let area = signed_area_ccw(&window);
+        if window.len() < 3 || area == 0 {
+            stats.invisible += 1;
+            continue;
+        }
+        let back = area < 0;
+        if back {
+            if options.cull_backfaces {
+                stats.culled += 1;
+                continue;
+            }
+            project(method, face, true, &mut window);
+            window.reverse();
+        }
+        stats.rasterized += 1;
+        method.begin_polygon(face, mesh.corner_range(face), back);
+        target.polygon(face, back);
+        shaded += match options.palette {
+            None => fill(&window, options, &walk, method, target, TrueColor),
+            Some(p) => {
+                let output = Indexed(p, scene.lighting.material.kd);
+                fill(&window, options, &walk, method, target, output)
+            }
+        };
+    }
+    stats.fragments_shaded = shaded;
+    stats.lighting_evaluations = method.evaluations();
+    stats
+}
