@@ -131,7 +131,8 @@ mod tests {
     use serde::Deserialize;
 
     use super::Choice;
-    use crate::{Interpolation, Polygons, Rasterizer, Shading, Specular};
+    use crate::light::Specular;
+    use crate::scene::{Interpolation, Polygons, Rasterizer, Shading};
 
     /// Every value's name reads back as that value, by `FromStr` (any ASCII
     /// case) and by serde (exactly), and `Display` writes the name.

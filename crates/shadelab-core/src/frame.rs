@@ -19,11 +19,12 @@ use rayon::prelude::*;
 
 use crate::color::Rgb;
 use crate::image::Image;
+use crate::light::{LightKind, Material, Specular};
 use crate::raster::scanline::ScanlineRasterizer;
 use crate::raster::tiled::TiledRasterizer;
 use crate::raster::Rasterize;
 use crate::scene::{Rasterizer, RenderError, RenderOptions, RenderStats, Scene};
-use crate::shade::{LightKind, Lighting, Material, Specular};
+use crate::shade::Lighting;
 use crate::simd::SimdLevel;
 
 /// Renders a frame: [`Renderer::render_into`] with a new renderer and image.

@@ -15,6 +15,7 @@ mod clip;
 mod color;
 mod frame;
 mod image;
+mod light;
 pub mod limits;
 mod mesh;
 mod models;
@@ -33,6 +34,7 @@ pub use clip::{clip_polygon, ClipVertex};
 pub use color::{Rgb, Rgb8};
 pub use frame::{coverage, render, Renderer};
 pub use image::Image;
+pub use light::{Light, LightKind, Material, Specular};
 pub use limits::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 pub use mesh::{CornerNormals, Mesh, MeshError};
 pub use models::{builtin_model, builtin_model_info, ModelError, ModelInfo, BUILTIN_MODELS};
@@ -46,9 +48,7 @@ pub use probe::{
 };
 pub use raster::to_window;
 pub use raster::Interpolation;
-pub use scene::{Polygons, Rasterizer, RenderError, RenderOptions, RenderStats, Scene};
-pub use shade::{
-    Light, LightKind, LightTerm, Lighting, LightingTerms, Material, Shading, Specular, Terms,
-};
+pub use scene::{Polygons, Rasterizer, RenderError, RenderOptions, RenderStats, Scene, Shading};
+pub use shade::{LightTerm, Lighting, LightingTerms, Terms};
 pub use simd::SimdLevel;
 pub use text::{escape_message, escape_token, format_number, is_unsafe_char};

@@ -15,8 +15,7 @@ use crate::frame::{lighting, validate};
 use crate::raster::scanline::{draw, Target};
 use crate::raster::scanline::{SpanTrace, Varyings};
 use crate::raster::{Interpolation, SUBPIXEL_ONE};
-use crate::scene::{Rasterizer, RenderError, RenderOptions, Scene};
-use crate::shade::Shading;
+use crate::scene::{Rasterizer, RenderError, RenderOptions, Scene, Shading};
 
 /// Which pixels to watch.
 #[derive(Debug, Clone, Copy)]

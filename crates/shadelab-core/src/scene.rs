@@ -6,12 +6,60 @@
 
 use crate::camera::{Camera, CameraError};
 use crate::color::{Rgb, Rgb8};
+use crate::light::{Light, Material, Specular};
 use crate::limits::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 use crate::mesh::{CornerNormals, Mesh};
 use crate::palette::Palette;
-use crate::raster::scanline::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
-use crate::raster::Interpolation;
-use crate::shade::{Light, Material, Shading, Specular};
+
+/// The three classic shading methods: the one definition every layer uses
+/// (names and help declared below, see [`crate::choice`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Shading {
+    /// One lighting evaluation per polygon.
+    Flat,
+    /// Lighting per vertex, colours interpolated.
+    Gouraud,
+    /// Normals interpolated and lit per pixel.
+    #[default]
+    Phong,
+}
+
+choices!(Shading, "shading method", {
+    Flat => "flat": "one lighting evaluation per polygon",
+    Gouraud => "gouraud": "lighting per vertex, colours interpolated",
+    Phong => "phong": "normals interpolated, lighting per pixel",
+});
+
+impl Shading {
+    /// The display name ("Flat", "Gouraud", "Phong").
+    pub fn title(self) -> &'static str {
+        match self {
+            Shading::Flat => "Flat",
+            Shading::Gouraud => "Gouraud",
+            Shading::Phong => "Phong",
+        }
+    }
+}
+
+/// How attributes are interpolated across a polygon.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Interpolation {
+    /// Perspective-correct: attributes divided by w are linear in window space.
+    #[default]
+    Perspective,
+    /// The textbook's screen-space linear interpolation along edges and spans.
+    Screen,
+}
+
+choices!(Interpolation, "interpolation", {
+    Perspective => "perspective": "perspective-correct: attributes divided by w, linear on the screen",
+    Screen => "screen": "linear in screen space along edges and spans, as in the textbook",
+});
+
+/// The fewest fraction bits fixed-point stepping accepts.
+pub const MIN_FRACTION_BITS: u32 = 1;
+/// The most fraction bits fixed-point stepping accepts (sums stay exact in `f64`).
+pub const MAX_FRACTION_BITS: u32 = 30;
 
 /// Which rasterizer draws the frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]

@@ -858,28 +858,9 @@ impl<S: Simd> Mul<f32> for Vf<S> {
 
 /// `x^p` for a whole exponent `p` in 1..=1024: with `p = m·2^k`, `m` odd,
 /// `x^m` by repeated squaring, then `k` squarings (for the usual powers of
-/// two no other multiplication; at most 19 in all, exact to a few ulps).
-#[inline(always)]
-pub(crate) fn pow_whole<S: Simd>(x: Vf<S>, p: u32) -> Vf<S> {
-    let k = p.trailing_zeros();
-    let mut m = p >> k >> 1;
-    let mut result = x;
-    let mut base = x;
-    while m > 0 {
-        base = base * base;
-        if m & 1 == 1 {
-            result = result * base;
-        }
-        m >>= 1;
-    }
-    for _ in 0..k {
-        result = result * result;
-    }
-    result
-}
-
-/// [`pow_whole`] of `G` vectors at once, step by step, so that their
-/// chains of squarings overlap.
+/// two no other multiplication; at most 19 in all, exact to a few ulps),
+/// for `G` vectors at once, step by step, so that their chains of squarings
+/// overlap.
 #[inline(always)]
 pub(crate) fn pow_whole_groups<S: Simd, const G: usize>(x: [Vf<S>; G], p: u32) -> [Vf<S>; G] {
     let k = p.trailing_zeros();

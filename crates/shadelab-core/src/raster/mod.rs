@@ -8,6 +8,8 @@
 pub mod scanline;
 pub(crate) mod tiled;
 
+pub use crate::scene::Interpolation;
+
 use crate::clip::ClipVertex;
 use crate::image::Image;
 use crate::scene::{RenderOptions, RenderStats, Scene};
@@ -80,21 +82,6 @@ mod tests {
         assert_eq!(super::snap(f64::NAN), 0);
     }
 }
-
-/// How attributes are interpolated across a polygon.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Interpolation {
-    /// Perspective-correct: attributes divided by w are linear in window space.
-    #[default]
-    Perspective,
-    /// The textbook's screen-space linear interpolation along edges and spans.
-    Screen,
-}
-
-choices!(Interpolation, "interpolation", {
-    Perspective => "perspective": "perspective-correct: attributes divided by w, linear on the screen",
-    Screen => "screen": "linear in screen space along edges and spans, as in the textbook",
-});
 
 /// A polygon vertex in window space, ready to rasterize.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -231,6 +218,7 @@ impl Fan {
     }
 }
 
+/// The guard band, in NDC units, that keeps window coordinates within ±2^20
 /// pixels, so snapped edge arithmetic fits in `i64` with room to spare.
 pub(crate) fn guard_band(width: u32, height: u32) -> f32 {
     ((1u32 << 20) as f32 / width.max(height) as f32 - 1.0).max(1.0)

@@ -17,45 +17,13 @@
 //! normals, attributes and colours (see `docs/architecture.md`).
 
 mod blocks;
+mod lanes;
 mod model;
 mod scalar;
 
-pub(crate) use self::blocks::{
-    byte_units, FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS,
-};
-pub use self::model::{
-    Light, LightKind, LightTerm, Lighting, LightingTerms, Material, Specular, Terms,
-};
+pub(crate) use self::blocks::{FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS};
+pub(crate) use self::lanes::byte_units;
+pub use self::model::{LightTerm, Lighting, LightingTerms, Terms};
 pub(crate) use self::scalar::{
     with_method, Indexed, Method, MethodVisitor, Output, SceneRefs, TrueColor,
 };
-
-/// The three classic shading methods: the one definition every layer uses
-/// (names and help declared below, see [`crate::choice`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum Shading {
-    /// One lighting evaluation per polygon.
-    Flat,
-    /// Lighting per vertex, colours interpolated.
-    Gouraud,
-    /// Normals interpolated and lit per pixel.
-    #[default]
-    Phong,
-}
-
-choices!(Shading, "shading method", {
-    Flat => "flat": "one lighting evaluation per polygon",
-    Gouraud => "gouraud": "lighting per vertex, colours interpolated",
-    Phong => "phong": "normals interpolated, lighting per pixel",
-});
-
-impl Shading {
-    /// The display name ("Flat", "Gouraud", "Phong").
-    pub fn title(self) -> &'static str {
-        match self {
-            Shading::Flat => "Flat",
-            Shading::Gouraud => "Gouraud",
-            Shading::Phong => "Phong",
-        }
-    }
-}

@@ -11,86 +11,7 @@
 use glam::Vec3;
 
 use crate::color::Rgb;
-
-/// Surface reflectances and the specular exponent.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Material {
-    /// Ambient reflectance.
-    pub ka: Rgb,
-    /// Diffuse reflectance.
-    pub kd: Rgb,
-    /// Specular reflectance.
-    pub ks: Rgb,
-    /// Specular exponent `p`.
-    pub shininess: f32,
-}
-
-/// The default material: a red of Ka = Kd = (200, 60, 60) with a white
-/// specular term. Under the default lighting (ambient 0.2, one white light of
-/// intensity 1) the brightest diffuse red is 0.2·200 + 200 = 240 < 255, so no
-/// channel clips outside the specular highlight and the three methods'
-/// differences show at first sight (a Kd red of 255 clipped over a large area).
-impl Default for Material {
-    fn default() -> Material {
-        Material {
-            ka: Rgb::new(200.0 / 255.0, 60.0 / 255.0, 60.0 / 255.0),
-            kd: Rgb::new(200.0 / 255.0, 60.0 / 255.0, 60.0 / 255.0),
-            ks: Rgb::WHITE,
-            shininess: 32.0,
-        }
-    }
-}
-
-/// Where a light is.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum LightKind {
-    /// A point light at a world position.
-    Point {
-        /// World position.
-        position: Vec3,
-    },
-    /// A light at infinity whose rays travel along `direction`.
-    Directional {
-        /// The direction the light travels in (from the light to the scene).
-        direction: Vec3,
-    },
-}
-
-/// A light source; `Id = Is = color · intensity`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Light {
-    /// Position or direction.
-    pub kind: LightKind,
-    /// Colour.
-    pub color: Rgb,
-    /// Intensity multiplying the colour.
-    pub intensity: f32,
-}
-
-impl Light {
-    /// The unit vector from `point` towards the light, or zero if undefined.
-    pub fn direction_from(&self, point: Vec3) -> Vec3 {
-        match self.kind {
-            LightKind::Point { position } => (position - point).normalize_or_zero(),
-            LightKind::Directional { direction } => (-direction).normalize_or_zero(),
-        }
-    }
-}
-
-/// The specular term's angle: Phong's reflection vector or Blinn's halfway vector.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum Specular {
-    /// `max(0, r·v)^p` with `r = 2(n·l)n − l` (Phong, 1975).
-    #[default]
-    Phong,
-    /// `max(0, n·h)^p` with `h = normalize(l + v)` (Blinn, 1977).
-    BlinnPhong,
-}
-
-choices!(Specular, "specular term", {
-    Phong => "phong": "max(0, r·v)^p with r the mirrored light direction (Phong, 1975)",
-    BlinnPhong => "blinn-phong": "max(0, n·h)^p with h halfway between light and eye (Blinn, 1977)",
-});
+use crate::light::{Light, Material, Specular};
 
 /// Everything the reflection model needs besides the surface point.
 #[derive(Debug, Clone, PartialEq)]
@@ -148,15 +69,58 @@ pub struct LightingTerms {
     pub total: Rgb,
 }
 
+/// Where one evaluation's terms go: nowhere ([`Lighting::eval`], where the
+/// compiler drops them) or into a list ([`Lighting::explain`]).
+trait Record {
+    fn light(&mut self, term: LightTerm);
+}
+
+impl Record for () {
+    #[inline(always)]
+    fn light(&mut self, _: LightTerm) {}
+}
+
+impl Record for Vec<LightTerm> {
+    fn light(&mut self, term: LightTerm) {
+        self.push(term);
+    }
+}
+
 impl Lighting {
-    /// The terms of the model at `point` with unit normal `normal`, summed in
-    /// the same order as [`Lighting::eval`], so `total` equals its result exactly.
+    /// The terms of the model at `point` with unit normal `normal`: the
+    /// same evaluation as [`Lighting::eval`], so `total` equals its result
+    /// exactly.
     pub fn explain(&self, point: Vec3, normal: Vec3, terms: Terms) -> LightingTerms {
+        let mut lights = Vec::with_capacity(self.lights.len());
+        let (ambient, view, total) = self.model(point, normal, terms, &mut lights);
+        LightingTerms {
+            view,
+            ambient,
+            lights,
+            total,
+        }
+    }
+
+    /// The reflected light at `point` with unit normal `normal`, unclamped.
+    #[inline]
+    pub fn eval(&self, point: Vec3, normal: Vec3, terms: Terms) -> Rgb {
+        self.model(point, normal, terms, &mut ()).2
+    }
+
+    /// The model, the one scalar writing of it: returns `Ia·Ka`, the unit
+    /// vector towards the eye and the total; each light's terms go to `record`.
+    #[inline(always)]
+    fn model(
+        &self,
+        point: Vec3,
+        normal: Vec3,
+        terms: Terms,
+        record: &mut impl Record,
+    ) -> (Rgb, Vec3, Rgb) {
         let m = &self.material;
         let ambient = self.ambient * m.ka;
         let mut out = ambient;
         let view = (self.eye - point).normalize_or_zero();
-        let mut lights = Vec::with_capacity(self.lights.len());
         for light in &self.lights {
             let l = light.direction_from(point);
             let n_dot_l = normal.dot(l);
@@ -190,37 +154,8 @@ impl Lighting {
                     out += term.specular;
                 }
             }
-            lights.push(term);
+            record.light(term);
         }
-        LightingTerms {
-            view,
-            ambient,
-            lights,
-            total: out,
-        }
-    }
-
-    /// The reflected light at `point` with unit normal `normal`, unclamped.
-    pub fn eval(&self, point: Vec3, normal: Vec3, terms: Terms) -> Rgb {
-        let m = &self.material;
-        let mut out = self.ambient * m.ka;
-        let view = (self.eye - point).normalize_or_zero();
-        for light in &self.lights {
-            let l = light.direction_from(point);
-            let n_dot_l = normal.dot(l);
-            if n_dot_l <= 0.0 {
-                continue;
-            }
-            let i = light.color * light.intensity;
-            out += i * m.kd * n_dot_l;
-            if terms == Terms::Full {
-                let cosine = match self.specular {
-                    Specular::Phong => (normal * (2.0 * n_dot_l) - l).dot(view),
-                    Specular::BlinnPhong => normal.dot((l + view).normalize_or_zero()),
-                };
-                out += i * m.ks * cosine.max(0.0).powf(m.shininess);
-            }
-        }
-        out
+        (ambient, view, out)
     }
 }

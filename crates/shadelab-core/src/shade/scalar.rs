@@ -8,10 +8,10 @@ use std::ops::Range;
 use glam::Vec3;
 
 use super::model::{Lighting, Terms};
-use super::Shading;
 use crate::color::{Rgb, Rgb8};
 use crate::mesh::{CornerNormals, Mesh};
 use crate::palette::Palette;
+use crate::scene::Shading;
 
 /// What a shading method attaches to corners and computes per fragment.
 pub(crate) trait Method<const N: usize> {

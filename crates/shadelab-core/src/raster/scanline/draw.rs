@@ -12,9 +12,9 @@ use crate::normals::face_normals;
 use crate::raster::{
     guard_band, signed_area_ccw, to_window, FragmentSink, Rasterize, ScreenVertex,
 };
-use crate::scene::{Polygons, RenderOptions, RenderStats, Scene};
+use crate::scene::{Polygons, RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::{
-    with_method, Indexed, Lighting, Method, MethodVisitor, Output, SceneRefs, Shading, TrueColor,
+    with_method, Indexed, Lighting, Method, MethodVisitor, Output, SceneRefs, TrueColor,
 };
 
 /// Where fragments go: a depth test, then (if it passes) a colour.
@@ -166,8 +166,6 @@ impl<const N: usize, M: Method<N>, T: Target, O: Output> FragmentSink<N>
         self.target.trace(span);
     }
 }
-
-/// The guard band, in NDC units, that keeps window coordinates within ±2^20
 
 /// Draws a frame with the scanline rasterizer into `target`.
 pub(crate) fn draw(

@@ -41,6 +41,7 @@
 mod draw;
 
 pub(crate) use self::draw::{draw, ScanlineRasterizer, Target};
+pub use crate::scene::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
 
 use super::{
     fan, is_convex, signed_area_ccw, FragmentSink, Interpolation, ScreenVertex, SUBPIXEL_HALF,
@@ -56,11 +57,6 @@ pub struct ScanlineOptions {
     /// bits ([`MIN_FRACTION_BITS`]`..=`[`MAX_FRACTION_BITS`]); `None`: in `f64`.
     pub fraction_bits: Option<u32>,
 }
-
-/// The fewest fraction bits fixed-point stepping accepts.
-pub const MIN_FRACTION_BITS: u32 = 1;
-/// The most fraction bits fixed-point stepping accepts (sums stay exact in `f64`).
-pub const MAX_FRACTION_BITS: u32 = 30;
 
 impl ScanlineOptions {
     /// Floating-point stepping with `interpolation`.

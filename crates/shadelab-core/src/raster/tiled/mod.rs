@@ -20,7 +20,7 @@
 //!
 //! * **The same pixels as the scanline reference.** Every polygon goes
 //!   through the same clipping ([`crate::clip_polygon`]), the same viewport
-//!   transform and snapping ([`crate::render`]'s `to_window`), the same facing
+//!   transform and snapping ([`crate::raster::to_window`]), the same facing
 //!   decision and the same [`crate::raster::fan`] as the scanline rasterizer
 //!   drawing fans, so both see identical snapped triangles; coverage is then
 //!   exact integer arithmetic in both (see `setup.rs`). Colours differ only
@@ -57,9 +57,9 @@ use crate::image::Image;
 use crate::normals::face_normal;
 use crate::raster::{fan, signed_area_ccw, ScreenVertex};
 use crate::raster::{guard_band, to_window, Rasterize};
-use crate::scene::{RenderOptions, RenderStats, Scene};
+use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::{
-    byte_units, FlatShader, GouraudShader, Lighting, PhongShader, Shader, Shading, Terms, MAX_ATTRS,
+    byte_units, FlatShader, GouraudShader, Lighting, PhongShader, Shader, Terms, MAX_ATTRS,
 };
 use crate::simd::{dispatch, prefetch, Kernel, Simd, SimdLevel, Vf};
 
