@@ -1,0 +1,174 @@
+//! Phong's deferred shading in a band: the positions of fragments that
+//! passed the depth test packed into whole lanes, interpolated 8 at a time,
+//! queued, lit 16 at a time and written back in queue order (see `mod.rs`).
+
+use super::{interpolate, Band, Fill, Row};
+use crate::shade::{Shader, MAX_ATTRS};
+use crate::simd::{Simd, Vf, Vi};
+
+impl Band {
+    /// Keeps the positions of the lanes in `bits` (columns `x` from the
+    /// triangle's first, `dy` rows down; block at buffer index `at`) for
+    /// interpolation 8 at a time.
+    #[inline(always)]
+    pub(super) fn pend<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        x: Vf<S>,
+        dy: f32,
+        bits: u32,
+        at: usize,
+    ) {
+        let p = &mut self.pending;
+        let len = p.len;
+        x.compress(bits)
+            .store((&mut p.x[len..len + 8]).try_into().unwrap());
+        Vf::splat(s, dy).store((&mut p.dy[len..len + 8]).try_into().unwrap());
+        let index = Vi::ramp(s) + Vi::splat(s, at as i32);
+        let slot: &mut [i32; 8] = (&mut p.at[len..len + 8]).try_into().unwrap();
+        s.i_store(index.compress(bits).0, slot);
+        p.len = len + bits.count_ones() as usize;
+        if p.len >= 8 {
+            self.interpolate_pending(s, f);
+        }
+    }
+
+    /// Interpolates the first (up to) 8 pending fragments and queues them
+    /// for lighting. Each plane is evaluated as in a block (`origin + dy·rows`,
+    /// then `x·dx +` that), so the values are those of an 8-pixel block.
+    #[inline(always)]
+    pub(super) fn interpolate_pending<S: Simd, Sh: Shader>(&mut self, s: S, f: &Fill<'_, S, Sh>) {
+        let p = &mut self.pending;
+        let x = Vf::load(s, p.x[..8].try_into().unwrap());
+        let dy = Vf::load(s, p.dy[..8].try_into().unwrap());
+        let index = s.i_load(p.at[..8].try_into().unwrap());
+        let count = p.len.min(8);
+        // Later positions move to the front.
+        let rest_x = Vf::load(s, p.x[8..].try_into().unwrap());
+        rest_x.store((&mut p.x[..8]).try_into().unwrap());
+        let rest_dy = Vf::load(s, p.dy[8..].try_into().unwrap());
+        rest_dy.store((&mut p.dy[..8]).try_into().unwrap());
+        let rest_at = s.i_load(p.at[8..].try_into().unwrap());
+        s.i_store(rest_at, (&mut p.at[..8]).try_into().unwrap());
+        p.len -= count;
+        self.interpolate_and_queue(s, f, x, dy, index, count);
+    }
+
+    /// Interpolates a whole block and queues it for lighting, from the row's
+    /// values when it has them (spans), else as `interpolate_and_queue` does.
+    #[inline(always)]
+    pub(super) fn queue_block<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        x: Vf<S>,
+        row: &Row,
+        index: S::I,
+    ) {
+        if !row.all {
+            return self.interpolate_and_queue(s, f, x, Vf::splat(s, row.dy), index, 8);
+        }
+        let at_row = |j: usize| Vf::splat(s, row.values[j]);
+        let attrs = interpolate(s, f, x, at_row);
+        self.queue_lit(s, f, &attrs, index, 8);
+    }
+
+    /// Interpolates the fragments at columns `x`, `dy` rows down (buffer
+    /// indices `index`), and queues the first `count` of them for lighting.
+    #[inline(always)]
+    pub(super) fn interpolate_and_queue<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        x: Vf<S>,
+        dy: Vf<S>,
+        index: S::I,
+        count: usize,
+    ) {
+        let at_row = |j: usize| {
+            let plane = &f.planes[j];
+            Vf::splat(s, plane.at_origin) + Vf::splat(s, plane.dy) * dy
+        };
+        let attrs = interpolate(s, f, x, at_row);
+        self.queue_lit(s, f, &attrs, index, count);
+    }
+
+    /// Appends the first `count` lanes of `attrs` (buffer indices `index`)
+    /// to the lighting queue, and lights 16 once there are 16.
+    #[inline(always)]
+    pub(super) fn queue_lit<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        attrs: &[Vf<S>; MAX_ATTRS],
+        index: S::I,
+        count: usize,
+    ) {
+        let q = &mut self.queue;
+        let len = q.len;
+        for k in 0..Sh::ATTRS {
+            attrs[k].store((&mut q.attrs[k][len..len + 8]).try_into().unwrap());
+        }
+        s.i_store(index, (&mut q.at[len..len + 8]).try_into().unwrap());
+        q.len = len + count;
+        if q.len >= 16 {
+            self.shade_queue(s, f.shader, f.shader_lanes);
+        }
+    }
+
+    /// Shades the first (up to) 16 queued fragments, as two blocks lit
+    /// together, and writes their colours.
+    #[inline(always)]
+    pub(super) fn shade_queue<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        shader: &Sh,
+        lanes: &Sh::Lanes<S>,
+    ) {
+        let q = &mut self.queue;
+        let mut first = [Vf::splat(s, 0.0); MAX_ATTRS];
+        let mut second = [Vf::splat(s, 0.0); MAX_ATTRS];
+        for k in 0..Sh::ATTRS {
+            first[k] = Vf::load(s, q.attrs[k][..8].try_into().unwrap());
+            second[k] = Vf::load(s, q.attrs[k][8..16].try_into().unwrap());
+        }
+        let colors = shader.light_pair(lanes, s, &first, &second);
+        let count = q.len.min(16);
+        for (g, colors) in colors.into_iter().enumerate() {
+            let at: &[i32; 8] = q.at[8 * g..8 * g + 8].try_into().unwrap();
+            let n = count.saturating_sub(8 * g).min(8);
+            let in_a_row = Vi(s.i_load(at), s).eq_bits(Vi::ramp(s) + Vi::splat(s, at[0]));
+            if n == 8 && in_a_row == 0xff {
+                // Eight fragments in a row (a whole block): one store.
+                let start = at[0] as usize;
+                s.i_store(
+                    colors.0,
+                    (&mut self.color[start..start + 8]).try_into().unwrap(),
+                );
+            } else {
+                let mut values = [0i32; 8];
+                s.i_store(colors.0, &mut values);
+                for i in 0..n {
+                    self.color[at[i] as usize] = values[i];
+                }
+            }
+        }
+        // Later fragments move to the front, keeping their order.
+        for k in 0..Sh::ATTRS {
+            let rest = Vf::load(s, q.attrs[k][16..].try_into().unwrap());
+            rest.store((&mut q.attrs[k][..8]).try_into().unwrap());
+        }
+        let rest = s.i_load(q.at[16..].try_into().unwrap());
+        s.i_store(rest, (&mut q.at[..8]).try_into().unwrap());
+        q.len -= count;
+    }
+
+    /// Shades whatever is still queued; called once the band's triangles are drawn.
+    #[inline(always)]
+    pub fn flush<S: Simd, Sh: Shader>(&mut self, s: S, shader: &Sh, lanes: &Sh::Lanes<S>) {
+        if Sh::DEFERRED && self.queue.len > 0 {
+            self.shade_queue(s, shader, lanes);
+        }
+    }
+}

@@ -1,0 +1,285 @@
+//! The AVX2 backend: one AVX2/FMA instruction per lane operation.
+
+use std::arch::x86_64::*;
+
+use super::Simd;
+
+/// The AVX2 backend; a value proves the CPU has AVX2 and FMA (and
+/// POPCNT, BMI1 and BMI2, which every AVX2 processor has).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Avx2(());
+
+impl Avx2 {
+    pub fn new() -> Option<Avx2> {
+        (std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("fma")
+            && std::is_x86_feature_detected!("popcnt")
+            && std::is_x86_feature_detected!("bmi1")
+            && std::is_x86_feature_detected!("bmi2"))
+        .then_some(Avx2(()))
+    }
+}
+
+// Every method below calls AVX/AVX2 intrinsics. SAFETY (for each
+// `unsafe` block in this impl): `self` is an `Avx2`, which only
+// `Avx2::new` creates after checking that the CPU has AVX2 and FMA;
+// loads and stores go through references to exactly 8 lanes.
+impl Simd for Avx2 {
+    type F = __m256;
+    type I = __m256i;
+
+    #[inline(always)]
+    fn f_splat(self, v: f32) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_set1_ps(v) }
+    }
+    #[inline(always)]
+    fn f_add(self, a: __m256, b: __m256) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_add_ps(a, b) }
+    }
+    #[inline(always)]
+    fn f_sub(self, a: __m256, b: __m256) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_sub_ps(a, b) }
+    }
+    #[inline(always)]
+    fn f_mul(self, a: __m256, b: __m256) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_mul_ps(a, b) }
+    }
+    #[inline(always)]
+    fn f_mul_add(self, a: __m256, b: __m256, c: __m256) -> __m256 {
+        // SAFETY: see the impl (FMA is checked with AVX2).
+        unsafe { _mm256_fmadd_ps(a, b, c) }
+    }
+    #[inline(always)]
+    fn f_min(self, a: __m256, b: __m256) -> __m256 {
+        // vminps returns the second operand when either is NaN: `a < b ? a : b`.
+        // SAFETY: see the impl.
+        unsafe { _mm256_min_ps(a, b) }
+    }
+    #[inline(always)]
+    fn f_max(self, a: __m256, b: __m256) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_max_ps(a, b) }
+    }
+    #[inline(always)]
+    fn f_rsqrt(self, a: __m256) -> __m256 {
+        // The 12-bit estimate and one Newton step: r·(3 − a·r²)/2.
+        // SAFETY: see the impl.
+        unsafe {
+            let r = _mm256_rsqrt_ps(a);
+            let ar2 = _mm256_mul_ps(_mm256_mul_ps(a, r), r);
+            _mm256_mul_ps(
+                _mm256_mul_ps(r, _mm256_set1_ps(0.5)),
+                _mm256_sub_ps(_mm256_set1_ps(3.0), ar2),
+            )
+        }
+    }
+    #[inline(always)]
+    fn f_recip(self, a: __m256) -> __m256 {
+        // The 12-bit estimate and one Newton step: r·(2 − a·r).
+        // SAFETY: see the impl.
+        unsafe {
+            let r = _mm256_rcp_ps(a);
+            _mm256_mul_ps(r, _mm256_sub_ps(_mm256_set1_ps(2.0), _mm256_mul_ps(a, r)))
+        }
+    }
+    #[inline(always)]
+    fn f_floor(self, a: __m256) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_floor_ps(a) }
+    }
+    #[inline(always)]
+    fn f_lt(self, a: __m256, b: __m256) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LT_OQ>(a, b)) }
+    }
+    #[inline(always)]
+    fn f_gt(self, a: __m256, b: __m256) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_castps_si256(_mm256_cmp_ps::<_CMP_GT_OQ>(a, b)) }
+    }
+    #[inline(always)]
+    fn f_select(self, m: __m256i, a: __m256, b: __m256) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_blendv_ps(b, a, _mm256_castsi256_ps(m)) }
+    }
+    #[inline(always)]
+    fn f_load(self, src: &[f32; 8]) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_loadu_ps(src.as_ptr()) }
+    }
+    #[inline(always)]
+    fn f_store(self, v: __m256, dst: &mut [f32; 8]) {
+        // SAFETY: see the impl.
+        unsafe { _mm256_storeu_ps(dst.as_mut_ptr(), v) }
+    }
+    #[inline(always)]
+    fn f_to_i(self, a: __m256) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_cvttps_epi32(a) }
+    }
+    #[inline(always)]
+    fn f_bits(self, a: __m256) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_castps_si256(a) }
+    }
+    #[inline(always)]
+    fn f_from_i(self, a: __m256i) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_cvtepi32_ps(a) }
+    }
+    #[inline(always)]
+    fn f_from_bits(self, a: __m256i) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_castsi256_ps(a) }
+    }
+    #[inline(always)]
+    fn f_lanes(self) -> __m256 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_setr_ps(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0) }
+    }
+
+    #[inline(always)]
+    fn i_splat(self, v: i32) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_set1_epi32(v) }
+    }
+    #[inline(always)]
+    fn i_add(self, a: __m256i, b: __m256i) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_add_epi32(a, b) }
+    }
+    #[inline(always)]
+    fn i_sub(self, a: __m256i, b: __m256i) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_sub_epi32(a, b) }
+    }
+    #[inline(always)]
+    fn i_and(self, a: __m256i, b: __m256i) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_and_si256(a, b) }
+    }
+    #[inline(always)]
+    fn i_or(self, a: __m256i, b: __m256i) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_or_si256(a, b) }
+    }
+    #[inline(always)]
+    fn i_max(self, a: __m256i, b: __m256i) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_max_epi32(a, b) }
+    }
+    #[inline(always)]
+    fn i_mul(self, a: __m256i, b: __m256i) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_mullo_epi32(a, b) }
+    }
+    #[inline(always)]
+    fn i_gt(self, a: __m256i, b: __m256i) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_cmpgt_epi32(a, b) }
+    }
+    #[inline(always)]
+    fn i_lanes(self) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7) }
+    }
+    #[inline(always)]
+    fn i_shl(self, a: __m256i, bits: u32) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_sll_epi32(a, _mm_cvtsi32_si128(bits as i32)) }
+    }
+    #[inline(always)]
+    fn i_sra(self, a: __m256i, bits: u32) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_sra_epi32(a, _mm_cvtsi32_si128(bits as i32)) }
+    }
+    #[inline(always)]
+    fn i_select(self, m: __m256i, a: __m256i, b: __m256i) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_blendv_epi8(b, a, m) }
+    }
+    #[inline(always)]
+    fn i_load(self, src: &[i32; 8]) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe { _mm256_loadu_si256(src.as_ptr().cast()) }
+    }
+    #[inline(always)]
+    fn i_store(self, v: __m256i, dst: &mut [i32; 8]) {
+        // SAFETY: see the impl.
+        unsafe { _mm256_storeu_si256(dst.as_mut_ptr().cast(), v) }
+    }
+    #[inline(always)]
+    fn i_bits(self, a: __m256i) -> u32 {
+        // SAFETY: see the impl.
+        unsafe { _mm256_movemask_ps(_mm256_castsi256_ps(a)) as u32 }
+    }
+    #[inline(always)]
+    fn i_from_bits(self, bits: u32) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe {
+            let lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+            let set = _mm256_and_si256(_mm256_set1_epi32(bits as i32), lane_bits);
+            _mm256_cmpeq_epi32(set, lane_bits)
+        }
+    }
+
+    #[inline(always)]
+    fn f_compress(self, v: __m256, bits: u32) -> __m256 {
+        let order = &super::portable::COMPRESS[bits as usize & 255];
+        // SAFETY: see the impl; `order` is 8 lanes.
+        unsafe { _mm256_permutevar8x32_ps(v, _mm256_loadu_si256(order.as_ptr().cast())) }
+    }
+    #[inline(always)]
+    fn i_compress(self, v: __m256i, bits: u32) -> __m256i {
+        let order = &super::portable::COMPRESS[bits as usize & 255];
+        // SAFETY: see the impl; `order` is 8 lanes.
+        unsafe { _mm256_permutevar8x32_epi32(v, _mm256_loadu_si256(order.as_ptr().cast())) }
+    }
+
+    #[inline(always)]
+    fn f_to_bytes(self, r: __m256, g: __m256, b: __m256) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe {
+            // `min(top, v)` keeps NaN (the second operand wins when
+            // either is NaN), which truncates to i32::MIN and so
+            // saturates to 0; values past 255.5 become 255.5, so the
+            // truncation stays within i32.
+            let top = _mm256_set1_ps(255.5);
+            let [r, g, b] = [r, g, b].map(|c| _mm256_cvttps_epi32(_mm256_min_ps(top, c)));
+            // Per 128-bit half, as bytes with saturation: r0..r3 g0..g3
+            // b0..b3 b0..b3 (lanes 4..7 in the upper half), then
+            // gathered per pixel.
+            let rg = _mm256_packs_epi32(r, g);
+            let bb = _mm256_packs_epi32(b, b);
+            let planar = _mm256_packus_epi16(rg, bb);
+            let per_pixel = _mm256_setr_epi8(
+                0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1, //
+                0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1,
+            );
+            _mm256_shuffle_epi8(planar, per_pixel)
+        }
+    }
+
+    #[inline(always)]
+    fn i_store_rgb(self, v: __m256i, dst: &mut [u8; 24]) {
+        // SAFETY: see the impl; the first store writes bytes 0..16, the
+        // second and third 12..20 and 20..24, all within `dst`.
+        unsafe {
+            let compact = _mm256_setr_epi8(
+                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, //
+                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
+            );
+            let packed = _mm256_shuffle_epi8(v, compact);
+            let low = _mm256_castsi256_si128(packed);
+            let high = _mm256_extracti128_si256::<1>(packed);
+            let p = dst.as_mut_ptr();
+            _mm_storeu_si128(p.cast(), low);
+            _mm_storel_epi64(p.add(12).cast(), high);
+            (p.add(20) as *mut i32).write_unaligned(_mm_extract_epi32::<2>(high));
+        }
+    }
+}

@@ -1,0 +1,451 @@
+//! Eight lanes of `f32`, `i32` and `i64`: the only place with `unsafe`.
+//!
+//! The tiled rasterizer works on blocks of 8 pixels. Its hot code is written
+//! once, generic over a [`Simd`] backend, with the lane types [`Vf`] (8 ×
+//! f32) and [`Vi`] (8 × i32, also used as lane masks) giving it ordinary
+//! operators. Two backends exist:
+//!
+//! * [`Portable`]: arrays of 8 and loops, plain safe Rust that compiles for
+//!   any target (LLVM vectorizes some of it: SSE2, or `simd128` on
+//!   WebAssembly when enabled);
+//! * [`Avx2`] (x86-64): one AVX2 instruction per operation. A value of this
+//!   type exists only once the CPU is known to have AVX2 and FMA, which is
+//!   what makes its `unsafe` intrinsic calls sound.
+//!
+//! [`dispatch`] runs a [`Kernel`] with the best backend inside a
+//! `#[target_feature(enable = "avx2,fma")]` function, so that the inlined
+//! intrinsics compile to VEX code. Both backends compute in IEEE single
+//! precision; they differ in the last bits only, where AVX2 fuses
+//! multiply-adds and uses its reciprocal estimates refined by a Newton step
+//! (22+ bits instead of an exact division, which costs 5–10 times more), so
+//! colours agree within 1/255. Tests check both, and
+//! [`SimdLevel::Portable`] can be forced.
+
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+mod portable;
+
+use std::ops::{Add, BitAnd, BitOr, Mul, Sub};
+
+pub(crate) use self::portable::Portable;
+
+/// Which instruction set the tiled rasterizer's inner loops use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SimdLevel {
+    /// Plain Rust, vectorized by the compiler where it can.
+    Portable,
+    /// 8-lane AVX2 (x86-64 only, chosen when the CPU has it).
+    Avx2,
+}
+
+impl SimdLevel {
+    /// The best level this CPU supports.
+    pub fn detect() -> SimdLevel {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if avx2::Avx2::new().is_some() {
+                return SimdLevel::Avx2;
+            }
+        }
+        SimdLevel::Portable
+    }
+
+    /// Whether this CPU can run this level.
+    pub fn is_supported(self) -> bool {
+        match self {
+            SimdLevel::Portable => true,
+            SimdLevel::Avx2 => SimdLevel::detect() == SimdLevel::Avx2,
+        }
+    }
+
+    /// "avx2" or "portable".
+    pub fn name(self) -> &'static str {
+        match self {
+            SimdLevel::Portable => "portable",
+            SimdLevel::Avx2 => "avx2",
+        }
+    }
+}
+
+/// A piece of work compiled once per backend. `run` and everything it calls
+/// in its hot loops must be `#[inline(always)]`.
+pub(crate) trait Kernel {
+    /// What the work produces.
+    type Output;
+    /// Does the work with backend `S`.
+    fn run<S: Simd>(self, simd: S) -> Self::Output;
+}
+
+/// Runs `kernel` with the backend for `level` (portable when the CPU lacks it).
+pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, kernel: K) -> K::Output {
+    #[cfg(target_arch = "x86_64")]
+    {
+        #[target_feature(enable = "avx2,fma,popcnt,bmi1,bmi2")]
+        unsafe fn with_avx2<K: Kernel>(kernel: K, simd: avx2::Avx2) -> K::Output {
+            kernel.run(simd)
+        }
+        if level == SimdLevel::Avx2 {
+            if let Some(simd) = avx2::Avx2::new() {
+                // SAFETY: `Avx2::new` succeeded, so the CPU has AVX2, FMA,
+                // POPCNT, BMI1 and BMI2, the only requirement of a
+                // `target_feature` function.
+                return unsafe { with_avx2(kernel, simd) };
+            }
+        }
+    }
+    let _ = level;
+    kernel.run(Portable)
+}
+
+/// Asks the processor to start loading the cache line holding `value`, so
+/// that a later read does not wait for memory (a hint: it has no effect on
+/// the program's results, and none at all off x86-64).
+#[inline(always)]
+pub(crate) fn prefetch<T>(value: &T) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        // SAFETY: a prefetch never faults and changes no memory; SSE is part
+        // of every x86-64 processor; the address comes from a reference.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast()) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
+}
+
+/// The operations the rasterizer needs on 8 lanes.
+pub(crate) trait Simd: Copy + Send + Sync {
+    /// 8 × f32.
+    type F: Copy;
+    /// 8 × i32; masks are all ones (true) or zero per lane.
+    type I: Copy;
+
+    fn f_splat(self, v: f32) -> Self::F;
+    fn f_add(self, a: Self::F, b: Self::F) -> Self::F;
+    fn f_sub(self, a: Self::F, b: Self::F) -> Self::F;
+    fn f_mul(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a·b + c`, fused where the backend can (AVX2 FMA), else two roundings.
+    fn f_mul_add(self, a: Self::F, b: Self::F, c: Self::F) -> Self::F;
+    /// `a < b ? a : b` (so a NaN in `a` gives `b`).
+    fn f_min(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a > b ? a : b` (so a NaN in `a` gives `b`).
+    fn f_max(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `1 / √a` to at least 22 bits (exact in the portable backend); any
+    /// value where `a` is zero, negative or not finite.
+    fn f_rsqrt(self, a: Self::F) -> Self::F;
+    /// `1 / a` to at least 22 bits (exact in the portable backend) for
+    /// finite non-zero `a`.
+    fn f_recip(self, a: Self::F) -> Self::F;
+    fn f_floor(self, a: Self::F) -> Self::F;
+    fn f_lt(self, a: Self::F, b: Self::F) -> Self::I;
+    fn f_gt(self, a: Self::F, b: Self::F) -> Self::I;
+    /// Lanes of `a` where `mask` is set, of `b` elsewhere.
+    fn f_select(self, mask: Self::I, a: Self::F, b: Self::F) -> Self::F;
+    fn f_load(self, src: &[f32; 8]) -> Self::F;
+    fn f_store(self, v: Self::F, dst: &mut [f32; 8]);
+    /// Truncation towards zero; lanes must lie within ±2^31.
+    fn f_to_i(self, a: Self::F) -> Self::I;
+    fn f_bits(self, a: Self::F) -> Self::I;
+    fn f_from_i(self, a: Self::I) -> Self::F;
+    fn f_from_bits(self, a: Self::I) -> Self::F;
+    fn f_lanes(self) -> Self::F;
+
+    fn i_splat(self, v: i32) -> Self::I;
+    fn i_add(self, a: Self::I, b: Self::I) -> Self::I;
+    fn i_sub(self, a: Self::I, b: Self::I) -> Self::I;
+    fn i_and(self, a: Self::I, b: Self::I) -> Self::I;
+    fn i_or(self, a: Self::I, b: Self::I) -> Self::I;
+    fn i_max(self, a: Self::I, b: Self::I) -> Self::I;
+    /// Wrapping multiplication (the low 32 bits of the product).
+    fn i_mul(self, a: Self::I, b: Self::I) -> Self::I;
+    /// All ones where `a > b`, signed.
+    fn i_gt(self, a: Self::I, b: Self::I) -> Self::I;
+    /// `i` in lane `i`.
+    fn i_lanes(self) -> Self::I;
+    fn i_shl(self, a: Self::I, bits: u32) -> Self::I;
+    fn i_sra(self, a: Self::I, bits: u32) -> Self::I;
+    /// Lanes of `a` where `mask` is set, of `b` elsewhere.
+    fn i_select(self, mask: Self::I, a: Self::I, b: Self::I) -> Self::I;
+    fn i_load(self, src: &[i32; 8]) -> Self::I;
+    fn i_store(self, v: Self::I, dst: &mut [i32; 8]);
+    /// The sign bit of each lane, as bits 0..8.
+    fn i_bits(self, a: Self::I) -> u32;
+    /// A mask from bits 0..8.
+    fn i_from_bits(self, bits: u32) -> Self::I;
+
+    /// The lanes whose bit is set in `bits` (0..256), moved to the front
+    /// in order; the other lanes are unspecified.
+    fn f_compress(self, v: Self::F, bits: u32) -> Self::F;
+    /// As [`Simd::f_compress`], for `i32` lanes.
+    fn i_compress(self, v: Self::I, bits: u32) -> Self::I;
+
+    /// Three channels in byte units plus one half (`255·c + 0.5`), each
+    /// truncated and saturated to 0..=255 (NaN to 0, as Rust's `as u8`),
+    /// packed per lane as `r | g << 8 | b << 16`.
+    fn f_to_bytes(self, r: Self::F, g: Self::F, b: Self::F) -> Self::I;
+
+    /// The low three bytes of each lane, packed: 8 RGB pixels.
+    fn i_store_rgb(self, v: Self::I, dst: &mut [u8; 24]);
+}
+
+/// 8 × f32 with operators, for backend `S`.
+#[derive(Clone, Copy)]
+pub(crate) struct Vf<S: Simd>(pub S::F, pub S);
+
+/// 8 × i32 (or lane masks) with operators, for backend `S`.
+#[derive(Clone, Copy)]
+pub(crate) struct Vi<S: Simd>(pub S::I, pub S);
+
+impl<S: Simd> Vf<S> {
+    #[inline(always)]
+    pub fn splat(s: S, v: f32) -> Self {
+        Vf(s.f_splat(v), s)
+    }
+    #[inline(always)]
+    pub fn lanes(s: S) -> Self {
+        Vf(s.f_lanes(), s)
+    }
+    #[inline(always)]
+    pub fn load(s: S, src: &[f32; 8]) -> Self {
+        Vf(s.f_load(src), s)
+    }
+    #[inline(always)]
+    pub fn store(self, dst: &mut [f32; 8]) {
+        self.1.f_store(self.0, dst)
+    }
+    #[inline(always)]
+    pub fn splat_like(self, v: f32) -> Self {
+        Vf::splat(self.1, v)
+    }
+    /// `self·m + a`, fused where the backend can.
+    #[inline(always)]
+    pub fn mul_add(self, m: Self, a: Self) -> Self {
+        Vf(self.1.f_mul_add(self.0, m.0, a.0), self.1)
+    }
+    #[inline(always)]
+    pub fn min(self, o: Self) -> Self {
+        Vf(self.1.f_min(self.0, o.0), self.1)
+    }
+    #[inline(always)]
+    pub fn max(self, o: Self) -> Self {
+        Vf(self.1.f_max(self.0, o.0), self.1)
+    }
+    /// `1 / √self`, see [`Simd::f_rsqrt`].
+    #[inline(always)]
+    pub fn rsqrt(self) -> Self {
+        Vf(self.1.f_rsqrt(self.0), self.1)
+    }
+    /// `1 / self`, see [`Simd::f_recip`].
+    #[inline(always)]
+    pub fn recip(self) -> Self {
+        Vf(self.1.f_recip(self.0), self.1)
+    }
+    #[inline(always)]
+    pub fn floor(self) -> Self {
+        Vf(self.1.f_floor(self.0), self.1)
+    }
+    #[inline(always)]
+    pub fn lt(self, o: Self) -> Vi<S> {
+        Vi(self.1.f_lt(self.0, o.0), self.1)
+    }
+    #[inline(always)]
+    pub fn gt(self, o: Self) -> Vi<S> {
+        Vi(self.1.f_gt(self.0, o.0), self.1)
+    }
+    /// Lanes of `yes` where `mask` is set, of `no` elsewhere.
+    #[inline(always)]
+    pub fn select(mask: Vi<S>, yes: Self, no: Self) -> Self {
+        Vf(yes.1.f_select(mask.0, yes.0, no.0), yes.1)
+    }
+    /// The lanes set in `bits`, packed to the front.
+    #[inline(always)]
+    pub fn compress(self, bits: u32) -> Self {
+        Vf(self.1.f_compress(self.0, bits), self.1)
+    }
+    /// Truncates towards zero; lanes must lie within ±2^31.
+    #[inline(always)]
+    pub fn to_i(self) -> Vi<S> {
+        Vi(self.1.f_to_i(self.0), self.1)
+    }
+    #[inline(always)]
+    pub fn bits(self) -> Vi<S> {
+        Vi(self.1.f_bits(self.0), self.1)
+    }
+    /// Channels in byte units plus one half to packed colours, see
+    /// [`Simd::f_to_bytes`].
+    #[inline(always)]
+    pub fn to_bytes(r: Self, g: Self, b: Self) -> Vi<S> {
+        Vi(r.1.f_to_bytes(r.0, g.0, b.0), r.1)
+    }
+}
+
+impl<S: Simd> Vi<S> {
+    #[inline(always)]
+    pub fn splat(s: S, v: i32) -> Self {
+        Vi(s.i_splat(v), s)
+    }
+    #[inline(always)]
+    pub fn from_mask_bits(s: S, bits: u32) -> Self {
+        Vi(s.i_from_bits(bits), s)
+    }
+    /// 0, 1, … 7.
+    #[inline(always)]
+    pub fn ramp(s: S) -> Self {
+        Vi(s.i_lanes(), s)
+    }
+    /// All ones where `self > o`.
+    #[inline(always)]
+    pub fn gt(self, o: Self) -> Self {
+        Vi(self.1.i_gt(self.0, o.0), self.1)
+    }
+    /// Bits 0..8 of the lanes where `self == o`.
+    #[inline(always)]
+    pub fn eq_bits(self, o: Self) -> u32 {
+        let s = self.1;
+        !(Vi(s.i_gt(self.0, o.0), s) | Vi(s.i_gt(o.0, self.0), s)).mask_bits() & 0xff
+    }
+    /// The lanes set in `bits`, packed to the front.
+    #[inline(always)]
+    pub fn compress(self, bits: u32) -> Self {
+        Vi(self.1.i_compress(self.0, bits), self.1)
+    }
+    #[inline(always)]
+    pub fn mask_bits(self) -> u32 {
+        self.1.i_bits(self.0)
+    }
+    #[inline(always)]
+    pub fn shl(self, bits: u32) -> Self {
+        Vi(self.1.i_shl(self.0, bits), self.1)
+    }
+    #[inline(always)]
+    pub fn sra(self, bits: u32) -> Self {
+        Vi(self.1.i_sra(self.0, bits), self.1)
+    }
+    #[inline(always)]
+    pub fn max(self, o: Self) -> Self {
+        Vi(self.1.i_max(self.0, o.0), self.1)
+    }
+    #[inline(always)]
+    pub fn to_f(self) -> Vf<S> {
+        Vf(self.1.f_from_i(self.0), self.1)
+    }
+    #[inline(always)]
+    pub fn bits_to_f(self) -> Vf<S> {
+        Vf(self.1.f_from_bits(self.0), self.1)
+    }
+    /// Lanes of `yes` where `mask` is set, of `no` elsewhere.
+    #[inline(always)]
+    pub fn select(mask: Self, yes: Self, no: Self) -> Self {
+        Vi(yes.1.i_select(mask.0, yes.0, no.0), yes.1)
+    }
+}
+
+macro_rules! binary {
+    ($ty:ident, $trait:ident, $method:ident, $op:ident) => {
+        impl<S: Simd> $trait for $ty<S> {
+            type Output = Self;
+            #[inline(always)]
+            fn $method(self, o: Self) -> Self {
+                $ty(self.1.$op(self.0, o.0), self.1)
+            }
+        }
+    };
+}
+binary!(Vf, Add, add, f_add);
+binary!(Vf, Sub, sub, f_sub);
+binary!(Vf, Mul, mul, f_mul);
+binary!(Vi, Add, add, i_add);
+binary!(Vi, Sub, sub, i_sub);
+binary!(Vi, Mul, mul, i_mul);
+binary!(Vi, BitAnd, bitand, i_and);
+binary!(Vi, BitOr, bitor, i_or);
+
+impl<S: Simd> Mul<f32> for Vf<S> {
+    type Output = Self;
+    #[inline(always)]
+    fn mul(self, o: f32) -> Self {
+        self * self.splat_like(o)
+    }
+}
+
+/// `x^p` for a whole exponent `p` in 1..=1024: with `p = m·2^k`, `m` odd,
+/// `x^m` by repeated squaring, then `k` squarings (for the usual powers of
+/// two no other multiplication; at most 19 in all, exact to a few ulps),
+/// for `G` vectors at once, step by step, so that their chains of squarings
+/// overlap.
+#[inline(always)]
+pub(crate) fn pow_whole_groups<S: Simd, const G: usize>(x: [Vf<S>; G], p: u32) -> [Vf<S>; G] {
+    let k = p.trailing_zeros();
+    let mut m = p >> k >> 1;
+    let mut result = x;
+    let mut base = x;
+    while m > 0 {
+        for g in 0..G {
+            base[g] = base[g] * base[g];
+            if m & 1 == 1 {
+                result[g] = result[g] * base[g];
+            }
+        }
+        m >>= 1;
+    }
+    for _ in 0..k {
+        for r in &mut result {
+            *r = *r * *r;
+        }
+    }
+    result
+}
+
+/// `x^p` for `x` in [0, 1] and `p > 0`, to about 1e-6 relative error: the
+/// specular power, which the scalar path computes with `powf`.
+#[inline(always)]
+pub(crate) fn pow_unit<S: Simd>(x: Vf<S>, p: f32) -> Vf<S> {
+    let s = x.1;
+    let one = Vf::splat(s, 1.0);
+    // log2(x) = e + log2(m), m in [√½, √2): with t = (m − 1)/(m + 1),
+    // log2(m) = 2/ln2 · (t + t³/3 + t⁵/5 + t⁷/7 + t⁹/9), |t| ≤ 0.172.
+    let bits = x.bits();
+    let sqrt_half = Vi::splat(s, 0x3f35_04f3);
+    let exponent = (bits - sqrt_half).sra(23);
+    let m = (bits - exponent.shl(23)).bits_to_f();
+    let t = (m - one) * (m + one).recip();
+    let t2 = t * t;
+    let series = ((((t2 * (1.0 / 9.0) + Vf::splat(s, 1.0 / 7.0)) * t2 + Vf::splat(s, 1.0 / 5.0))
+        * t2
+        + Vf::splat(s, 1.0 / 3.0))
+        * t2
+        + one)
+        * t;
+    let log2 = exponent.to_f() + series * (2.0 / std::f32::consts::LN_2);
+    // 2^y = 2^i · 2^f with i = round(y), f in [−½, ½], by the Taylor series
+    // of e^(f·ln2) to degree 6 (truncation error below 2e-7).
+    let y = (log2 * p)
+        .max(Vf::splat(s, -127.0))
+        .min(Vf::splat(s, 127.0));
+    let i = (y + Vf::splat(s, 0.5)).floor();
+    let f = y - i;
+    const C: [f32; 6] = [
+        std::f32::consts::LN_2,
+        0.240_226_5,
+        5.550_411e-2,
+        9.618_129e-3,
+        1.333_356e-3,
+        1.540_353e-4,
+    ];
+    let poly = (((((f * C[5] + Vf::splat(s, C[4])) * f + Vf::splat(s, C[3])) * f
+        + Vf::splat(s, C[2]))
+        * f
+        + Vf::splat(s, C[1]))
+        * f
+        + Vf::splat(s, C[0]))
+        * f
+        + one;
+    let scale = (i.to_i() + Vi::splat(s, 127)).max(Vi::splat(s, 0)).shl(23);
+    let result = poly * scale.bits_to_f();
+    // Exact zeros stay zero; so does anything below 2^-126.
+    let keep = x.gt(Vf::splat(s, 0.0)) & y.gt(Vf::splat(s, -126.0));
+    Vf::select(keep, result, Vf::splat(s, 0.0))
+}
+
+#[cfg(test)]
+mod tests;

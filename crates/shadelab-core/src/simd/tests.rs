@@ -1,0 +1,113 @@
+use super::*;
+
+struct Pow([f32; 8], f32);
+
+impl Kernel for Pow {
+    type Output = [f32; 8];
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> [f32; 8] {
+        let mut out = [0.0; 8];
+        pow_unit(Vf::load(s, &self.0), self.1).store(&mut out);
+        out
+    }
+}
+
+#[test]
+fn pow_unit_matches_powf() {
+    for level in [SimdLevel::Portable, SimdLevel::detect()] {
+        for p in [0.5f32, 1.0, 2.0, 7.5, 32.0, 128.0, 1000.0] {
+            let mut worst = 0f32;
+            for k in 0..=500 {
+                let xs: [f32; 8] = std::array::from_fn(|i| (k * 8 + i) as f32 / 4000.0);
+                let got = dispatch(level, Pow(xs, p));
+                for i in 0..8 {
+                    worst = worst.max((got[i] - xs[i].powf(p)).abs());
+                }
+            }
+            assert!(
+                worst < 2e-5,
+                "{level:?}, p = {p}: worst absolute error {worst}"
+            );
+        }
+    }
+}
+
+#[test]
+fn both_levels_agree() {
+    let x = [0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 0.99, 1.0];
+    let portable = dispatch(SimdLevel::Portable, Pow(x, 32.0));
+    let best = dispatch(SimdLevel::detect(), Pow(x, 32.0));
+    for i in 0..8 {
+        assert!(
+            (portable[i] - best[i]).abs() <= 1e-6,
+            "{portable:?} vs {best:?}"
+        );
+    }
+}
+
+struct Lanes;
+
+impl Kernel for Lanes {
+    type Output = ([f32; 8], u32, u32, [i32; 8]);
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> ([f32; 8], u32, u32, [i32; 8]) {
+        let mask = Vi::from_mask_bits(s, 0b1010_0110);
+        let values = Vf::load(s, &[0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
+        let mut packed = [0.0; 8];
+        values.compress(0b1010_0110).store(&mut packed);
+        let ramp = Vi::ramp(s) * Vi::splat(s, 3);
+        let mut above = [0; 8];
+        s.i_store(ramp.gt(Vi::splat(s, 7)).0, &mut above);
+        (
+            packed,
+            mask.mask_bits(),
+            (Vi::splat(s, -1) & mask).mask_bits(),
+            above,
+        )
+    }
+}
+
+struct Bytes([f32; 8]);
+
+impl Kernel for Bytes {
+    type Output = [i32; 8];
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> [i32; 8] {
+        let v = Vf::load(s, &self.0);
+        let mut out = [0; 8];
+        let packed = Vf::to_bytes(v, v + Vf::splat(s, 1.0), Vf::splat(s, 7.9));
+        s.i_store(packed.0, &mut out);
+        out
+    }
+}
+
+#[test]
+fn to_bytes_truncates_and_saturates() {
+    let v = [0.49, 0.5, 254.99, 255.5, 256.0, -3.0, f32::NAN, 3e9];
+    for level in [SimdLevel::Portable, SimdLevel::detect()] {
+        let got = dispatch(level, Bytes(v));
+        let want = v.map(|r| {
+            let byte = |c: f32| {
+                if c >= 255.0 {
+                    255
+                } else if c >= 0.0 {
+                    c as i32
+                } else {
+                    0
+                }
+            };
+            byte(r) | byte(r + 1.0) << 8 | 7 << 16
+        });
+        assert_eq!(got, want, "{level:?}");
+    }
+}
+
+#[test]
+fn lane_operations() {
+    for level in [SimdLevel::Portable, SimdLevel::detect()] {
+        let (packed, bits, and, above) = dispatch(level, Lanes);
+        assert_eq!(packed[..4], [1.0, 2.0, 5.0, 7.0], "{level:?}");
+        assert_eq!((bits, and), (0b1010_0110, 0b1010_0110), "{level:?}");
+        assert_eq!(above, [0, 0, 0, -1, -1, -1, -1, -1], "{level:?}");
+    }
+}
