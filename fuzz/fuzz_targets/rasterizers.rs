@@ -81,6 +81,7 @@ fuzz_target!(|input: Input| {
             },
             color: Rgb::WHITE,
             intensity: 1.0,
+            attenuation: shadelab_core::NO_ATTENUATION,
         }],
         material: Material {
             ka: Rgb::new(1.0, 0.25, 0.25),

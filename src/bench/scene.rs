@@ -73,6 +73,7 @@ pub fn standard_scene(mesh: Mesh, aspect: f32, full_screen: bool) -> Scene {
             },
             color: Rgb::WHITE,
             intensity: 1.0,
+            attenuation: shadelab_core::NO_ATTENUATION,
         }],
         material: Material {
             ka: rgb(KA),

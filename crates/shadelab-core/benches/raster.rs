@@ -32,6 +32,7 @@ fn scene(mesh: Mesh, camera: Camera) -> Scene {
             },
             color: Rgb::WHITE,
             intensity: 1.0,
+            attenuation: shadelab_core::NO_ATTENUATION,
         }],
         material: Material {
             ka: Rgb8::new(77, 64, 51).to_rgb(),

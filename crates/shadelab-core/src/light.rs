@@ -50,7 +50,7 @@ pub enum LightKind {
     },
 }
 
-/// A light source; `Id = Is = color · intensity`.
+/// A light source; `Id = Is = color · intensity / attenuation`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Light {
     /// Position or direction.
@@ -59,9 +59,31 @@ pub struct Light {
     pub color: Rgb,
     /// Intensity multiplying the colour.
     pub intensity: f32,
+    /// A point light's fall-off with distance `d`, as OpenGL's fixed
+    /// pipeline: its light is divided by `k[0] + k[1]·d + k[2]·d²`
+    /// (constant, linear, quadratic). [`NO_ATTENUATION`], `[1, 0, 0]`, is
+    /// none; directional lights have none.
+    pub attenuation: [f32; 3],
 }
 
+/// No fall-off with distance: [`Light::attenuation`]'s default.
+pub const NO_ATTENUATION: [f32; 3] = [1.0, 0.0, 0.0];
+
 impl Light {
+    /// What the light's colour and intensity are multiplied by at `point`:
+    /// `1 / (k[0] + k[1]·d + k[2]·d²)` for a point light at distance `d`,
+    /// exactly 1 without attenuation.
+    pub fn attenuation_at(&self, point: Vec3) -> f32 {
+        match self.kind {
+            LightKind::Point { position } if self.attenuation != NO_ATTENUATION => {
+                let [constant, linear, quadratic] = self.attenuation;
+                let d = position.distance(point);
+                1.0 / (constant + linear * d + quadratic * d * d)
+            }
+            _ => 1.0,
+        }
+    }
+
     /// The unit vector from `point` towards the light, or zero if undefined.
     pub fn direction_from(&self, point: Vec3) -> Vec3 {
         match self.kind {

@@ -29,6 +29,7 @@ fn frames_after_the_first_allocate_nothing() {
             },
             color: Rgb::WHITE,
             intensity: 1.0,
+            attenuation: shadelab_core::NO_ATTENUATION,
         }],
         material: Material::default(),
     };

@@ -275,6 +275,7 @@ fn normals_and_lighting_out_of_range() {
             },
             color: Rgb::WHITE,
             intensity: 1.0,
+            attenuation: shadelab_core::NO_ATTENUATION,
         },
         Light {
             kind: LightKind::Directional {
@@ -282,6 +283,7 @@ fn normals_and_lighting_out_of_range() {
             },
             color: Rgb::WHITE,
             intensity: 1.0,
+            attenuation: shadelab_core::NO_ATTENUATION,
         },
         Light {
             kind: LightKind::Point {
@@ -289,6 +291,7 @@ fn normals_and_lighting_out_of_range() {
             },
             color: Rgb::WHITE,
             intensity: nan,
+            attenuation: shadelab_core::NO_ATTENUATION,
         },
         Light {
             kind: LightKind::Point {
@@ -296,6 +299,7 @@ fn normals_and_lighting_out_of_range() {
             },
             color: Rgb::new(0.0, nan, 0.0),
             intensity: 1.0,
+            attenuation: shadelab_core::NO_ATTENUATION,
         },
     ] {
         scene = good.clone();
@@ -324,6 +328,7 @@ fn odd_but_valid_scenes_render() {
         },
         color: Rgb::WHITE,
         intensity: 1.0,
+        attenuation: shadelab_core::NO_ATTENUATION,
     }];
     scenes.push(zero);
     let mut at_surface = good.clone();
@@ -332,6 +337,7 @@ fn odd_but_valid_scenes_render() {
         kind: LightKind::Point { position: on_mesh },
         color: Rgb::WHITE,
         intensity: 1.0,
+        attenuation: shadelab_core::NO_ATTENUATION,
     }];
     scenes.push(at_surface);
     let mut behind = good.clone();

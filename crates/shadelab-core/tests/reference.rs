@@ -340,6 +340,7 @@ fn flat_cube_face_matches_hand_computation() {
             },
             color: Rgb::WHITE,
             intensity: 1.0,
+            attenuation: shadelab_core::NO_ATTENUATION,
         }],
         material: Material {
             ka: Rgb::new(1.0, 0.2, 0.4),

@@ -67,6 +67,7 @@ pub fn quad_scene(angle_degrees: f32, size: u32) -> (Scene, RenderOptions) {
             },
             color: Rgb::WHITE,
             intensity: 1.0,
+            attenuation: shadelab_core::NO_ATTENUATION,
         }],
         material: Material {
             ka: Rgb::WHITE,

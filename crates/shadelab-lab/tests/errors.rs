@@ -26,6 +26,7 @@ fn a_plane_lit_head_on_has_no_error_in_any_method() {
         },
         color: Rgb::WHITE,
         intensity: 0.8,
+        attenuation: shadelab_core::NO_ATTENUATION,
     }];
     scene.material.ks = Rgb::BLACK;
     for polygons in [Polygons::Whole, Polygons::Fans] {

@@ -32,6 +32,7 @@ fn scene(model: &str, detail: u32, eye: Vec3) -> Scene {
                 },
                 color: Rgb::new(1.0, 0.95, 0.9),
                 intensity: 0.9,
+                attenuation: shadelab_core::NO_ATTENUATION,
             },
             Light {
                 kind: LightKind::Directional {
@@ -39,6 +40,7 @@ fn scene(model: &str, detail: u32, eye: Vec3) -> Scene {
                 },
                 color: Rgb::new(0.4, 0.5, 1.0),
                 intensity: 0.5,
+                attenuation: shadelab_core::NO_ATTENUATION,
             },
         ],
         material: Material {

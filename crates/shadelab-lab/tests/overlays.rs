@@ -49,6 +49,7 @@ fn squares_scene(second: bool) -> Scene {
         },
         color: Rgb::WHITE,
         intensity: 1.0,
+        attenuation: shadelab_core::NO_ATTENUATION,
     }];
     s
 }

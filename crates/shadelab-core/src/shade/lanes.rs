@@ -19,7 +19,7 @@
 use glam::Vec3;
 
 use super::model::Lighting;
-use crate::light::{Light, LightKind, Material, Specular};
+use crate::light::{Light, LightKind, Material, Specular, NO_ATTENUATION};
 use crate::simd::{pow_unit, pow_whole_groups, Simd, Vf, Vi};
 
 /// How `max(0, r·v)^p` is computed for the material's `p`.
@@ -63,6 +63,8 @@ pub(crate) struct LaneLight {
     diffuse: [f32; 3],
     /// `Is·Ks` per channel.
     specular: [f32; 3],
+    /// A point light's attenuation `[k0, k1, k2]`, `None` when it has none.
+    attenuation: Option<[f32; 3]>,
 }
 
 /// [`LaneLight`] in lanes.
@@ -73,6 +75,7 @@ pub(crate) struct LightLanes<S: Simd> {
     point: bool,
     diffuse: [Vf<S>; 3],
     specular: [Vf<S>; 3],
+    attenuation: Option<[Vf<S>; 3]>,
 }
 
 /// `v` in lanes.
@@ -94,6 +97,8 @@ impl LaneLight {
             towards,
             diffuse: (i * material.kd).to_array(),
             specular: (i * material.ks).to_array(),
+            attenuation: (position.is_some() && light.attenuation != NO_ATTENUATION)
+                .then_some(light.attenuation),
         }
     }
 
@@ -110,6 +115,7 @@ impl LaneLight {
             point: self.position.is_some(),
             diffuse: self.diffuse.map(|c| Vf::splat(s, c)),
             specular: self.specular.map(|c| Vf::splat(s, c)),
+            attenuation: self.attenuation.map(|k| k.map(|k| Vf::splat(s, k))),
         }
     }
 }
@@ -157,7 +163,8 @@ impl Surface {
     /// `p` with unit normals `n` (see [`unit_normal`]), lit by `lights`;
     /// without the specular term unless `specular`. As [`Lighting::eval`]:
     /// `Ia·Ka + Σ [Id·Kd·(n·l) + Is·Ks·max(0, r·v)^p]` over the lights with
-    /// `n·l > 0` (`n·h` for Blinn's variant).
+    /// `n·l > 0` (`n·h` for Blinn's variant), each point light's terms divided
+    /// by its attenuation when it has one.
     #[inline(always)]
     pub fn radiance<S: Simd, const G: usize>(
         &self,
@@ -200,10 +207,23 @@ impl Surface {
             } else {
                 [zero; G]
             };
+            // A point light's 1 / (k0 + k1·d + k2·d²), when it has attenuation.
+            let fade = light.attenuation.map(|[k0, k1, k2]| {
+                std::array::from_fn::<Vf<S>, G, _>(|g| {
+                    let q = &light.at;
+                    let v = [q[0] - p[g][0], q[1] - p[g][1], q[2] - p[g][2]];
+                    let d2 = dot(&v, &v);
+                    let d = d2 * d2.rsqrt();
+                    d2.mul_add(k2, d.mul_add(k1, k0)).recip()
+                })
+            });
             for g in 0..G {
                 let lit = n_dot_l[g].gt(zero);
                 for c in 0..3 {
-                    let add = n_dot_l[g].mul_add(light.diffuse[c], spec[g] * light.specular[c]);
+                    let mut add = n_dot_l[g].mul_add(light.diffuse[c], spec[g] * light.specular[c]);
+                    if let Some(fade) = &fade {
+                        add = add * fade[g];
+                    }
                     out[g][c] = out[g][c] + Vf::select(lit, add, zero);
                 }
             }
@@ -291,6 +311,11 @@ mod tests {
                     },
                     color: Rgb::new(1.0, 0.9, 0.8),
                     intensity: 0.7,
+                    attenuation: if k >= 3 {
+                        [0.5, 0.3, 0.2]
+                    } else {
+                        NO_ATTENUATION
+                    },
                 };
                 let directional = Light {
                     kind: LightKind::Directional {
@@ -298,6 +323,7 @@ mod tests {
                     },
                     color: Rgb::new(0.5, 0.6, 1.0),
                     intensity: 0.5,
+                    attenuation: NO_ATTENUATION,
                 };
                 out.push(Lighting {
                     ambient: Rgb::new(0.2, 0.2, 0.25),

@@ -2,8 +2,10 @@
 //!
 //! `I = Ia·Ka + Σ [Id·Kd·max(0, n·l) + Is·Ks·max(0, r·v)^p]` per RGB channel,
 //! with `l` towards the light, `v` towards the eye, `r = 2(n·l)n − l`, and the
-//! specular term only where `n·l > 0`. This one function is what all three
-//! shading methods call; they differ only in where and how often.
+//! specular term only where `n·l > 0`. A point light may fall off with its
+//! distance `d`: its `Id = Is` divided by `k0 + k1·d + k2·d²`
+//! ([`Light::attenuation`], none by default). This one function is what all
+//! three shading methods call; they differ only in where and how often.
 //!
 //! Blinn's variant ([`Specular::BlinnPhong`]) replaces `r·v` with `n·h`,
 //! `h = normalize(l + v)`: what OpenGL's fixed pipeline and most engines use.
@@ -44,7 +46,7 @@ pub struct LightTerm {
     pub l: Vec3,
     /// `n·l`; the light adds nothing when it is not positive.
     pub n_dot_l: f32,
-    /// `Id = Is`: colour times intensity.
+    /// `Id = Is`: colour times intensity, divided by the attenuation.
     pub intensity: Rgb,
     /// `Id·Kd·(n·l)`, zero when `n·l ≤ 0`.
     pub diffuse: Rgb,
@@ -124,7 +126,7 @@ impl Lighting {
         for light in &self.lights {
             let l = light.direction_from(point);
             let n_dot_l = normal.dot(l);
-            let i = light.color * light.intensity;
+            let i = light.color * (light.intensity * light.attenuation_at(point));
             let mut term = LightTerm {
                 l,
                 n_dot_l,

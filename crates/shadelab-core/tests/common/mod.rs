@@ -267,6 +267,7 @@ pub fn standard_lighting() -> (Rgb, Vec<Light>, Material) {
             },
             color: Rgb::new(1.0, 0.95, 0.9),
             intensity: 0.9,
+            attenuation: shadelab_core::NO_ATTENUATION,
         },
         Light {
             kind: LightKind::Directional {
@@ -274,6 +275,7 @@ pub fn standard_lighting() -> (Rgb, Vec<Light>, Material) {
             },
             color: Rgb::new(0.4, 0.5, 1.0),
             intensity: 0.5,
+            attenuation: shadelab_core::NO_ATTENUATION,
         },
     ];
     let material = Material {

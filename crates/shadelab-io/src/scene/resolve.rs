@@ -441,6 +441,7 @@ fn resolve_light(k: usize, l: &LightSection) -> Result<Light, SceneError> {
         kind,
         color: rgb(&key("color"), l.color.unwrap_or([255; 3]))?,
         intensity: non_negative(&key("intensity"), l.intensity.unwrap_or(1.0))?,
+        attenuation: shadelab_core::NO_ATTENUATION,
     })
 }
 

@@ -37,6 +37,7 @@ pub fn scene(model: &str, detail: u32, eye: Vec3) -> Scene {
             },
             color: Rgb::WHITE,
             intensity: 1.0,
+            attenuation: shadelab_core::NO_ATTENUATION,
         }],
         material: Material {
             ka: Rgb::new(0.6, 0.6, 0.6),
