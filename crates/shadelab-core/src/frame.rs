@@ -23,7 +23,7 @@ use crate::light::{LightKind, Material, Specular};
 use crate::raster::scanline::ScanlineRasterizer;
 use crate::raster::tiled::TiledRasterizer;
 use crate::raster::Rasterize;
-use crate::scene::{Rasterizer, RenderError, RenderOptions, RenderStats, Scene};
+use crate::scene::{Rasterizer, RenderError, RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::Lighting;
 use crate::simd::SimdLevel;
 
@@ -123,8 +123,13 @@ impl Renderer {
     ) -> Result<Vec<u32>, RenderError> {
         validate(scene, options)?;
         let lighting = lighting(scene, options);
+        // Coverage needs no colour: the cheapest method.
+        let options = RenderOptions {
+            shading: Shading::Flat,
+            ..*options
+        };
         let rasterizer = pick(&mut self.tiled, &mut self.scanline, options.rasterizer);
-        Ok(rasterizer.coverage(scene, options, &lighting))
+        Ok(rasterizer.coverage(scene, &options, &lighting))
     }
 }
 

@@ -27,7 +27,8 @@ pub(crate) trait Rasterize {
         lighting: &Lighting,
         image: &mut Image,
     ) -> RenderStats;
-    /// How many polygons cover each pixel, row by row, with no depth test.
+    /// How many polygons cover each pixel, row by row, with no depth test
+    /// (`options.shading` is flat: no colour is needed).
     fn coverage(&mut self, scene: &Scene, options: &RenderOptions, lighting: &Lighting)
         -> Vec<u32>;
 }

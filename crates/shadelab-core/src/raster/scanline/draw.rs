@@ -12,7 +12,7 @@ use crate::normals::face_normals;
 use crate::raster::{
     guard_band, signed_area_ccw, to_window, FragmentSink, Rasterize, ScreenVertex,
 };
-use crate::scene::{Polygons, RenderOptions, RenderStats, Scene, Shading};
+use crate::scene::{Polygons, RenderOptions, RenderStats, Scene};
 use crate::shade::{
     with_method, Indexed, Lighting, Method, MethodVisitor, Output, SceneRefs, TrueColor,
 };
@@ -86,11 +86,7 @@ impl Rasterize for ScanlineRasterizer {
             counts: vec![0; options.width as usize * options.height as usize],
             width: options.width,
         };
-        let options = RenderOptions {
-            shading: Shading::Flat,
-            ..*options
-        };
-        draw(scene, &options, lighting, &mut counter);
+        draw(scene, options, lighting, &mut counter);
         counter.counts
     }
 }

@@ -269,11 +269,7 @@ impl Rasterize for TiledRasterizer {
         options: &RenderOptions,
         lighting: &Lighting,
     ) -> Vec<u32> {
-        let options = RenderOptions {
-            shading: Shading::Flat,
-            ..*options
-        };
-        self.geometry(scene, &options, lighting);
+        self.geometry(scene, options, lighting);
         let width = options.width as usize;
         let mut counts = vec![0u32; width * options.height as usize];
         let (chunks, simd) = (&self.chunks, self.simd);
@@ -290,7 +286,7 @@ impl Rasterize for TiledRasterizer {
                     index,
                     chunks,
                     &FlatShader,
-                    &options,
+                    options,
                     output,
                 );
             });
