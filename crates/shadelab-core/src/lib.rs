@@ -20,6 +20,7 @@ mod mesh;
 mod models;
 mod normals;
 mod palette;
+pub mod params;
 mod probe;
 pub mod raster;
 mod render;
