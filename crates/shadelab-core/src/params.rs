@@ -506,7 +506,7 @@ mod tests {
             assert!(p.min <= p.max, "{}", p.key);
             assert!(!p.help.is_empty() && p.help.ends_with('.'), "{}", p.key);
             assert!(
-                p.default.is_some() != !p.absent.is_empty(),
+                p.default.is_some() == p.absent.is_empty(),
                 "{}: a default or what absence means, not both",
                 p.key
             );

@@ -26,10 +26,21 @@ fn toml_value(p: &Param, value: &Value) -> String {
 /// the kind that takes it, and the key `p` needs set to its smallest value.
 fn scene(p: &Param, value: &str) -> String {
     let (section, name) = p.key.split_once('.').expect("keys are section.name");
-    let mut text = String::new();
-    if p.needs.is_empty() {
-        text.push_str(&format!("[{section}]\n{name} = {value}\n"));
-    } else {
+    if section == "lights" {
+        let kind = if name == "direction" {
+            "directional"
+        } else {
+            "point"
+        };
+        let position = if kind == "point" && name != "position" {
+            "position = [2, 2, 3]\n"
+        } else {
+            ""
+        };
+        return format!("[[lights]]\nkind = \"{kind}\"\n{position}{name} = {value}\n");
+    }
+    let mut text = format!("[{section}]\n{name} = {value}\n");
+    if !p.needs.is_empty() {
         let needed = params::get(p.needs);
         let (needed_section, needed_name) = needed.key.split_once('.').unwrap();
         assert_eq!(
@@ -37,22 +48,7 @@ fn scene(p: &Param, value: &str) -> String {
             "{} needs a key of its own section",
             p.key
         );
-        text.push_str(&format!(
-            "[{section}]\n{name} = {value}\n{needed_name} = {}\n",
-            needed.min
-        ));
-    }
-    if section == "lights" {
-        let kind = if name == "direction" {
-            "directional"
-        } else {
-            "point"
-        };
-        let mut light = format!("[[lights]]\nkind = \"{kind}\"\n");
-        if kind == "point" && name != "position" {
-            light.push_str("position = [2, 2, 3]\n");
-        }
-        text = light + &format!("{name} = {value}\n");
+        text.push_str(&format!("{needed_name} = {}\n", needed.min));
     }
     text
 }
