@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use shadelab_core::limits::{MAX_COST_RUNS, MAX_QUAD_SIZE, MIN_QUAD_SIZE};
 use shadelab_core::raster::scanline::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
 use shadelab_core::{
-    Choice, Interpolation, Polygons, Rasterizer, Shading, Specular, MAX_IMAGE_PIXELS,
+    Choice, Interpolation, Palette, Polygons, Rasterizer, Shading, Specular, MAX_IMAGE_PIXELS,
     MAX_IMAGE_SIDE,
 };
 use shadelab_io::{LightKindName, LightSection, NormalsChoice, SceneFile};
@@ -417,10 +417,10 @@ pub struct SceneOverrides {
     #[arg(long, value_name = "BITS", value_parser = whole::<u32, { MIN_FRACTION_BITS as u64 }, { MAX_FRACTION_BITS as u64 }>, allow_hyphen_values = true)]
     pub fixed_point: Option<u32>,
     /// Draw with an indexed palette of this many shades of the material colour (scanline rasterizer).
-    #[arg(long, value_name = "SHADES", value_parser = whole::<u32, 2, 256>, allow_hyphen_values = true)]
+    #[arg(long, value_name = "SHADES", value_parser = whole::<u32, { Palette::MIN_SHADES as u64 }, { Palette::ENTRIES as u64 }>, allow_hyphen_values = true)]
     pub palette: Option<u32>,
     /// The palette entry of the darkest shade.
-    #[arg(long, value_name = "ENTRY", requires = "palette", value_parser = whole::<u32, 0, 254>, allow_hyphen_values = true)]
+    #[arg(long, value_name = "ENTRY", requires = "palette", value_parser = whole::<u32, 0, { (Palette::ENTRIES - Palette::MIN_SHADES) as u64 }>, allow_hyphen_values = true)]
     pub palette_offset: Option<u32>,
 }
 
@@ -552,13 +552,7 @@ impl SceneOverrides {
         {
             let lights = scene.lights.get_or_insert_with(Vec::new);
             if lights.is_empty() {
-                lights.push(LightSection {
-                    kind: LightKindName::Point,
-                    position: Some([2.0, 2.0, 3.0]),
-                    direction: None,
-                    color: None,
-                    intensity: None,
-                });
+                lights.push(LightSection::default_light());
             }
             let light = &mut lights[0];
             if let Some(p) = self.light_pos {

@@ -15,6 +15,7 @@ mod explain;
 mod lab;
 mod label;
 mod memory;
+mod param_flags;
 mod plot;
 mod profile;
 mod quad;
@@ -27,7 +28,6 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::Context;
-use clap::Parser;
 use shadelab_core::limits::{MAX_THREADS, RENDER_BYTES_PER_PIXEL};
 use shadelab_core::{
     escape_message, escape_token, render, Image, RenderOptions, RenderStats, Scene, Shading,
@@ -59,7 +59,7 @@ fn output_error(error: impl Into<anyhow::Error>) -> Failure {
 }
 
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let cli = match Cli::try_parse_with_params() {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {
             // The arguments are repeated in clap's message: escaped like

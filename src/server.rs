@@ -1,5 +1,7 @@
 //! The viewer's web server: the page's files, embedded in the binary at
-//! build time (see `build.rs`), and nothing else.
+//! build time (see `build.rs`), the schema of the scene's parameters the
+//! page builds its controls from ([`PARAMS_PATH`], made from the core's
+//! table), and nothing else.
 //!
 //! A request names a file of the site by its exact path; there is no file
 //! system behind it, so a path with `..`, a backslash, a percent-escape or
@@ -50,6 +52,17 @@ mod site {
 /// The path the page asks for the WebAssembly module by.
 pub const WASM_PATH: &str = "shadelab.wasm";
 
+/// The path the page asks for the parameters' schema by
+/// ([`shadelab_core::params::schema_json`]).
+pub const PARAMS_PATH: &str = "params.json";
+
+/// The parameters' schema, made once from the core's table.
+fn params_json() -> &'static [u8] {
+    static JSON: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    JSON.get_or_init(shadelab_core::params::schema_json)
+        .as_bytes()
+}
+
 /// The content security policy of every response.
 const CSP: &str = "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; \
     worker-src 'self'; img-src 'self' data: blob:; style-src 'self'; \
@@ -97,6 +110,7 @@ impl Site {
         }
         let mut files = site::WEB_FILES.to_vec();
         files.push((WASM_PATH, site::WASM));
+        files.push((PARAMS_PATH, params_json()));
         Ok(Site { files })
     }
 
@@ -490,6 +504,15 @@ mod tests {
                 (WASM_PATH, b"\0asm"),
             ],
         }
+    }
+
+    #[test]
+    fn the_parameters_schema_is_served_with_the_files() {
+        // A build without the WebAssembly has no site to look at.
+        let Ok(site) = Site::embedded() else { return };
+        let (body, kind) = site.lookup("/params.json").unwrap();
+        assert_eq!(kind, "application/json");
+        assert_eq!(body, shadelab_core::params::schema_json().as_bytes());
     }
 
     #[test]

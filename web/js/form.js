@@ -228,7 +228,7 @@ export function buildForm(form, page) {
   });
   c.range(polygons, {
     name: 'palette-offset', label: t('polygons.offset'), min: param('palette.offset').min, step: param('palette.offset').step,
-    max: () => 256 - (s().palette?.shades ?? param('palette.shades').default),
+    max: () => param('palette.shades').max - (s().palette?.shades ?? param('palette.shades').default),
     get: () => s().palette?.offset ?? param('palette.offset').default,
     set: (v) => (s().palette = { shades: s().palette?.shades ?? param('palette.shades').default, offset: Math.round(v) }),
     hint: () => t('polygons.offset.hint'),

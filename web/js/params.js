@@ -1,17 +1,28 @@
-// Every parameter the page's controls set, declared once: its name (the
-// path in the page's state), the key that carries it in a link, its kind,
-// default, valid range and step, the span its slider covers, and the group
-// of controls it belongs to. The state's defaults (state.js), the link's
-// reading and writing (state.js) and the controls (form.js) are all derived
-// from this table, so that it can later be read from the JSON schema the
-// core provides instead of being written here.
+// Every parameter the page's controls set: its name (the path in the
+// page's state), the key that carries it in a link, the group of controls
+// it belongs to, and how its control shows it (the span its slider covers,
+// its step, the digits a link keeps). A parameter of the scene names its
+// scene-file `key`: its kind, default, valid range, unit, help and choices
+// come from the core's table of parameters, which the server hands out as
+// `params.json` and this module reads before any other module of the page
+// runs (shadelab_core::params). The state's defaults and the link's reading
+// and writing (state.js) and the controls (form.js) are derived from this.
 //
 // Kinds: 'number' (float), 'int', 'choice' (one of `choices`), 'bool',
-// 'rgb' (three integers 0–255), 'vec3' (three numbers within ±`max`).
-// `min`/`max` are the values accepted (from a number box or a link);
-// `slider` is the span of the slider when it is narrower. `nullable`: null
-// is a value (the model's own, or the mode off). A parameter of group
-// 'light' belongs to each light of the `lights` list.
+// 'rgb' (three integers within `min`..`max`), 'vec3' (three numbers within
+// ±`max`). `min`/`max` are the values accepted (from a number box or a
+// link); `slider` is the span of the slider when it is narrower.
+// `nullable`: null is a value (the model's own, or the mode off); `on` is
+// the value a mode starts from when it is switched on. A parameter of group
+// 'light' belongs to each light of the `lights` list. The page's own
+// parameters (the panel size, the instruments, the animation), which no
+// scene file has, are declared here whole.
+
+/** The core's schema: {params: [{key, kind, default, typical, min, max, unit, help}], choices: [{key, default, values}]}. */
+const SCHEMA = await fetch(new URL('../params.json', import.meta.url)).then((response) => {
+  if (!response.ok) throw new Error(`params.json: ${response.status} ${response.statusText}`);
+  return response.json();
+});
 
 /** The groups of controls, in the order the page shows them. */
 export const GROUPS = ['model', 'ambient', 'lights', 'material', 'camera', 'shading', 'polygons', 'view'];
@@ -19,46 +30,69 @@ export const GROUPS = ['model', 'ambient', 'lights', 'material', 'camera', 'shad
 /** The lights a scene may have in the viewer. */
 export const MAX_LIGHTS = 8;
 
-export const PARAMS = [
-  // The model: its name, its tessellation (its range is the model's own).
-  { name: 'model', link: 'model', group: 'model', kind: 'model', default: 'teapot' },
-  { name: 'detail', link: 'detail', group: 'model', kind: 'int', default: null, nullable: true, min: 0, max: 512, step: 1 },
+const KINDS = { number: 'number', integer: 'int', rgb: 'rgb', vec3: 'vec3', bool: 'bool' };
 
-  { name: 'ambient.color', link: 'ambient', group: 'ambient', kind: 'rgb', default: [255, 255, 255] },
-  { name: 'ambient.intensity', link: 'ambientI', group: 'ambient', kind: 'number', default: 0.2, min: 0, max: 100, slider: [0, 2], step: 0.01 },
+/** `p` completed from the schema's entry for its scene-file key. */
+function fromSchema(p) {
+  if (!p.key) return p;
+  const choice = SCHEMA.choices.find((c) => c.key === p.key);
+  if (choice) return { ...p, kind: 'choice', choices: choice.values.map((v) => v.name), default: choice.default };
+  const s = SCHEMA.params.find((q) => q.key === p.key);
+  if (!s) throw new Error(`params.json has no ${p.key}`);
+  const typical = s.typical ?? undefined;
+  return {
+    ...p,
+    kind: KINDS[s.kind] ?? p.kind,
+    default: p.nullable ? s.default : (s.default ?? typical),
+    on: typical,
+    min: s.min,
+    max: s.max,
+    unit: s.unit,
+    help: s.help,
+  };
+}
+
+export const PARAMS = [
+  // The model: its name, its tessellation (each model has its own range within the one given).
+  { name: 'model', key: 'model.source', link: 'model', group: 'model', kind: 'model' },
+  { name: 'detail', key: 'model.detail', link: 'detail', group: 'model', nullable: true, step: 1 },
+
+  { name: 'ambient.color', key: 'ambient.color', link: 'ambient', group: 'ambient' },
+  { name: 'ambient.intensity', key: 'ambient.intensity', link: 'ambientI', group: 'ambient', slider: [0, 2], step: 0.01 },
 
   // Each light of the list (group 'light'); the list itself is `lights`.
   { name: 'on', link: 'on', group: 'light', kind: 'bool', default: true },
   { name: 'kind', link: 'kind', group: 'light', kind: 'choice', choices: ['point', 'directional'], default: 'point' },
-  { name: 'color', link: 'light', group: 'light', kind: 'rgb', default: [255, 255, 255] },
-  { name: 'intensity', link: 'lightI', group: 'light', kind: 'number', default: 1, min: 0, max: 100, slider: [0, 3], step: 0.01 },
-  { name: 'position', link: 'lightPos', group: 'light', kind: 'vec3', default: [2, 2, 3], max: 1000, slider: [-10, 10], step: 0.05 },
-  { name: 'direction', link: 'lightDir', group: 'light', kind: 'vec3', default: [-1, -1, -1], max: 1000, slider: [-1, 1], step: 0.01 },
+  { name: 'color', key: 'lights.color', link: 'light', group: 'light' },
+  { name: 'intensity', key: 'lights.intensity', link: 'lightI', group: 'light', slider: [0, 3], step: 0.01 },
+  { name: 'position', key: 'lights.position', link: 'lightPos', group: 'light', slider: [-10, 10], step: 0.05 },
+  { name: 'direction', key: 'lights.direction', link: 'lightDir', group: 'light', slider: [-1, 1], step: 0.01 },
 
-  { name: 'material.ka', link: 'ka', group: 'material', kind: 'rgb', default: [200, 60, 60] },
-  { name: 'material.kd', link: 'kd', group: 'material', kind: 'rgb', default: [200, 60, 60] },
-  { name: 'material.ks', link: 'ks', group: 'material', kind: 'rgb', default: [255, 255, 255] },
-  { name: 'material.shininess', link: 'shininess', group: 'material', kind: 'number', default: 32, min: 0, max: 10000, slider: [0, 256], step: 1 },
+  { name: 'material.ka', key: 'material.ka', link: 'ka', group: 'material' },
+  { name: 'material.kd', key: 'material.kd', link: 'kd', group: 'material' },
+  { name: 'material.ks', key: 'material.ks', link: 'ks', group: 'material' },
+  { name: 'material.shininess', key: 'material.shininess', link: 'shininess', group: 'material', slider: [0, 256], step: 1 },
 
-  { name: 'camera.yaw', link: 'yaw', group: 'camera', kind: 'number', default: 0, min: -1e6, max: 1e6, slider: [-180, 180], step: 1, wrap: 360, digits: 2 },
-  { name: 'camera.pitch', link: 'pitch', group: 'camera', kind: 'number', default: 0, min: -89, max: 89, step: 1, digits: 2 },
-  { name: 'camera.zoom', link: 'zoom', group: 'camera', kind: 'number', default: 1, min: 0.25, max: 8, step: 0.01 },
+  { name: 'camera.yaw', key: 'render.yaw', link: 'yaw', group: 'camera', slider: [-180, 180], step: 1, wrap: 360, digits: 2 },
+  { name: 'camera.pitch', key: 'render.pitch', link: 'pitch', group: 'camera', slider: [-89, 89], step: 1, digits: 2 },
+  { name: 'camera.zoom', key: 'render.zoom', link: 'zoom', group: 'camera', slider: [0.25, 8], step: 0.01 },
 
   { name: 'normals', link: 'normals', group: 'shading', kind: 'choice', choices: ['auto', 'file', 'uniform', 'area', 'angle'], default: 'auto' },
-  { name: 'crease', link: 'crease', group: 'shading', kind: 'number', default: null, nullable: true, min: 0, max: 180, step: 1 },
-  { name: 'gouraudSpecular', link: 'gouraudSpecular', group: 'shading', kind: 'bool', default: false },
-  { name: 'interpolation', link: 'interpolation', group: 'shading', kind: 'choice', choices: ['perspective', 'screen'], default: 'perspective' },
-  { name: 'cull', link: 'cull', group: 'shading', kind: 'bool', default: true },
-  { name: 'specular', link: 'specular', group: 'shading', kind: 'choice', choices: ['phong', 'blinn-phong'], default: 'phong' },
+  { name: 'crease', key: 'model.crease_angle', link: 'crease', group: 'shading', nullable: true, step: 1 },
+  { name: 'gouraudSpecular', key: 'render.gouraud_specular', link: 'gouraudSpecular', group: 'shading' },
+  { name: 'interpolation', key: 'render.interpolation', link: 'interpolation', group: 'shading' },
+  { name: 'cull', key: 'render.cull_backfaces', link: 'cull', group: 'shading' },
+  { name: 'specular', key: 'render.specular', link: 'specular', group: 'shading' },
 
-  { name: 'polygons', link: 'polygons', group: 'polygons', kind: 'choice', choices: ['fans', 'whole'], default: 'fans' },
-  { name: 'fixedPoint', link: 'fixedPoint', group: 'polygons', kind: 'int', default: null, nullable: true, on: 8, min: 1, max: 30, step: 1 },
-  { name: 'palette.shades', link: 'palette', group: 'polygons', kind: 'int', default: 8, min: 2, max: 256, step: 1 },
-  { name: 'palette.offset', link: 'paletteOffset', group: 'polygons', kind: 'int', default: 0, min: 0, max: 254, step: 1 },
-  { name: 'rasterizer', link: 'rasterizer', group: 'polygons', kind: 'choice', choices: ['tiled', 'scanline'], default: 'tiled' },
+  { name: 'polygons', key: 'render.polygons', link: 'polygons', group: 'polygons' },
+  { name: 'fixedPoint', key: 'render.fixed_point_bits', link: 'fixedPoint', group: 'polygons', nullable: true, step: 1 },
+  { name: 'palette.shades', key: 'render.palette_shades', link: 'palette', group: 'polygons', step: 1 },
+  { name: 'palette.offset', key: 'render.palette_offset', link: 'paletteOffset', group: 'polygons', step: 1 },
+  { name: 'rasterizer', key: 'render.rasterizer', link: 'rasterizer', group: 'polygons' },
 
+  // The panels' side (render.width and render.height of each panel's scene).
   { name: 'size', link: 'size', group: 'view', kind: 'int', default: 480, min: 16, max: 2048, step: 1, choices: [240, 320, 400, 480, 560, 640, 800] },
-  { name: 'background', link: 'background', group: 'view', kind: 'rgb', default: [0, 0, 0] },
+  { name: 'background', key: 'render.background', link: 'background', group: 'view' },
 
   // The instruments' own controls.
   { name: 'errors', link: 'errors', group: 'instruments', kind: 'bool', default: false },
@@ -68,7 +102,7 @@ export const PARAMS = [
   // What the animation saves (not part of the scene, not in the link).
   { name: 'animation.frames', group: 'animation', kind: 'int', default: 36, min: 4, max: 360, step: 1 },
   { name: 'animation.delay', group: 'animation', kind: 'int', default: 80, min: 10, max: 1000, step: 10 },
-];
+].map(fromSchema);
 
 /** The parameter named `name` (for a light's, group 'light'). */
 export function param(name, group) {
@@ -114,7 +148,7 @@ export function valid(p, value) {
     case 'bool':
       return typeof value === 'boolean';
     case 'rgb':
-      return Array.isArray(value) && value.length === 3 && value.every((v) => Number.isInteger(v) && v >= 0 && v <= 255);
+      return Array.isArray(value) && value.length === 3 && value.every((v) => Number.isInteger(v) && v >= p.min && v <= p.max);
     case 'vec3':
       return Array.isArray(value) && value.length === 3 && value.every((v) => Number.isFinite(v) && Math.abs(v) <= p.max);
     default:

@@ -283,7 +283,7 @@ export function fromHash(hash) {
   const shades = param('palette.shades');
   read(shades, 'palette', (v) => (state.palette = { shades: v, offset: 0 }));
   read(param('palette.offset'), 'paletteOffset', (v) => {
-    if (state.palette && state.palette.shades + v <= 256) state.palette.offset = v;
+    if (state.palette && state.palette.shades + v <= shades.max) state.palette.offset = v;
     else invalid.push('paletteOffset');
   });
   const integers = (key, count, min, max) => {

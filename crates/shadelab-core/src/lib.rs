@@ -21,6 +21,7 @@ mod mesh;
 mod models;
 mod normals;
 mod palette;
+pub mod params;
 mod probe;
 pub mod raster;
 mod scene;

@@ -23,7 +23,7 @@ fn layer(module: &str) -> Option<u8> {
         "shade" => 2,
         "simd" => 1,
         "camera" | "choice" | "clip" | "color" | "image" | "light" | "limits" | "mesh"
-        | "models" | "normals" | "palette" | "scene" | "text" => 0,
+        | "models" | "normals" | "palette" | "params" | "scene" | "text" => 0,
         _ => return None,
     })
 }

@@ -10,8 +10,10 @@
 //! the material's `Kd`, and `ka` its `Ka`, or its `Kd` when it gives no `Ka`.
 //! A value in the scene (or a flag) always wins.
 //!
-//! This file holds the format (the sections, their keys and defaults) and its
-//! reading; `resolve.rs` checks the values and builds the scene.
+//! This file holds the format (the sections and their keys) and its
+//! reading; `resolve.rs` checks the values and builds the scene. Each
+//! key's default, range, unit and help are the core's table of parameters
+//! ([`shadelab_core::params`]), which the command line and the page read too.
 
 mod resolve;
 
@@ -240,10 +242,23 @@ pub struct RenderSection {
     pub zoom: Option<f32>,
 }
 
-/// Smallest `render.zoom`.
-pub const MIN_ZOOM: f32 = 0.1;
-/// Largest `render.zoom`.
-pub const MAX_ZOOM: f32 = 100.0;
+/// The range of `render.zoom` (declared with the other parameters in core).
+pub use shadelab_core::params::{MAX_ZOOM, MIN_ZOOM};
+
+impl LightSection {
+    /// The light of a scene that gives none: a white point light at the
+    /// table's default position (`lights.position`).
+    pub fn default_light() -> LightSection {
+        let [x, y, z] = shadelab_core::params::get("lights.position").default_three();
+        LightSection {
+            kind: LightKindName::Point,
+            position: Some([x as f32, y as f32, z as f32]),
+            direction: None,
+            color: None,
+            intensity: None,
+        }
+    }
+}
 
 /// Why a scene could not be read or used.
 #[derive(Debug, thiserror::Error)]

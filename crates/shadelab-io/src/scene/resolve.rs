@@ -1,21 +1,24 @@
 //! From a [`SceneFile`] to the core's [`Scene`] and [`RenderOptions`]:
 //! every value checked (errors name the key), the model loaded, the lights
 //! and the material resolved.
+//!
+//! Defaults, ranges and the wording of range errors come from the core's
+//! table of parameters ([`shadelab_core::params`]); the render options'
+//! own check ([`RenderOptions::check`]) covers the image size, the
+//! fixed-point bits and the palette.
 
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use shadelab_core::limits::{MAX_MODEL_COORDINATE_WITH_CAMERA, MAX_SCENE_COORDINATE};
+use shadelab_core::params;
 use shadelab_core::{
     builtin_model, builtin_model_info, vertex_normals, Camera, CornerNormals, Light, LightKind,
     Material, Mesh, NormalWeighting, Palette, Rasterizer, RenderOptions, Rgb, Rgb8, Scene,
 };
 use shadelab_core::{escape_token, format_number};
 
-use super::{
-    value_error, LightKindName, LightSection, NormalsChoice, SceneError, SceneFile, MAX_ZOOM,
-    MIN_ZOOM,
-};
+use super::{value_error, LightKindName, LightSection, NormalsChoice, SceneError, SceneFile};
 use crate::{load_mesh_file, FileMaterial};
 
 impl SceneFile {
@@ -102,15 +105,17 @@ impl SceneFile {
     /// [`SceneError::Value`] naming the key.
     pub fn render_options(&self) -> Result<RenderOptions, SceneError> {
         let r = &self.render;
-        let width = r.width.unwrap_or(800);
-        let height = r.height.unwrap_or(600);
+        let defaults = RenderOptions::default();
+        if let Some(offset) = r.palette_offset {
+            whole("render.palette_offset", offset)?;
+        }
         let mut options = RenderOptions {
-            width,
-            height,
+            width: r.width.unwrap_or(defaults.width),
+            height: r.height.unwrap_or(defaults.height),
             shading: r.shading.unwrap_or_default(),
-            background: rgb8("render.background", r.background.unwrap_or([0, 0, 0]))?,
-            cull_backfaces: r.cull_backfaces.unwrap_or(true),
-            gouraud_specular: r.gouraud_specular.unwrap_or(false),
+            background: rgb8("render.background", r.background)?,
+            cull_backfaces: r.cull_backfaces.unwrap_or(defaults.cull_backfaces),
+            gouraud_specular: r.gouraud_specular.unwrap_or(defaults.gouraud_specular),
             interpolation: r.interpolation.unwrap_or_default(),
             polygons: r.polygons.unwrap_or_default(),
             rasterizer: r.rasterizer.unwrap_or_default(),
@@ -153,7 +158,11 @@ impl SceneFile {
         &self,
         file: impl FnOnce(&str) -> Result<Mesh, SceneError>,
     ) -> Result<(Mesh, Option<f32>), SceneError> {
-        let source = self.model.source.as_deref().unwrap_or("teapot");
+        let default_source = match params::get("model.source").default {
+            Some(params::Value::Text(name)) => name,
+            _ => unreachable!("model.source has a default name"),
+        };
+        let source = self.model.source.as_deref().unwrap_or(default_source);
         if source.trim().is_empty() {
             return Err(value_error(
                 "model.source",
@@ -192,13 +201,7 @@ impl SceneFile {
         default_crease: Option<f32>,
     ) -> Result<(Mesh, CornerNormals), SceneError> {
         let crease = match self.model.crease_angle {
-            Some(a) if !(a.is_finite() && (0.0..=180.0).contains(&a)) => {
-                return Err(value_error(
-                    "model.crease_angle",
-                    format!("must be 0..=180 degrees, got {}", format_number(a)),
-                ));
-            }
-            Some(a) => Some(a),
+            Some(a) => Some(number("model.crease_angle", Some(a))?),
             None => default_crease,
         };
         // A model drawn in its own coordinates must keep its products
@@ -294,19 +297,11 @@ impl SceneFile {
             }
             None => Camera::framing_sphere(Vec3::ZERO, 1.0, 45.0, aspect),
         };
-        let yaw = finite("render.yaw", r.yaw.unwrap_or(0.0))?;
-        let pitch = finite("render.pitch", r.pitch.unwrap_or(0.0))?;
+        let yaw = number("render.yaw", r.yaw)?;
+        let pitch = number("render.pitch", r.pitch)?;
         let mut camera = camera.orbit(yaw, pitch);
         if let Some(zoom) = r.zoom {
-            if !(zoom.is_finite() && (MIN_ZOOM..=MAX_ZOOM).contains(&zoom)) {
-                return Err(value_error(
-                    "render.zoom",
-                    format!(
-                        "must be {MIN_ZOOM}..={MAX_ZOOM}, got {}",
-                        format_number(zoom)
-                    ),
-                ));
-            }
+            let zoom = number("render.zoom", Some(zoom))?;
             let given = camera.fov_y_degrees;
             let half = (given.to_radians() * 0.5).tan() / zoom;
             camera.fov_y_degrees = (2.0 * half.atan()).to_degrees();
@@ -341,16 +336,10 @@ impl SceneFile {
         }
 
         let a = &self.ambient;
-        let ambient_intensity = non_negative("ambient.intensity", a.intensity.unwrap_or(0.2))?;
-        let ambient = rgb("ambient.color", a.color.unwrap_or([255; 3]))? * ambient_intensity;
+        let ambient_intensity = number("ambient.intensity", a.intensity)?;
+        let ambient = rgb("ambient.color", a.color)? * ambient_intensity;
 
-        let default_lights = [LightSection {
-            kind: LightKindName::Point,
-            position: Some([2.0, 2.0, 3.0]),
-            direction: None,
-            color: None,
-            intensity: None,
-        }];
+        let default_lights = [LightSection::default_light()];
         let light_sections = self.lights.as_deref().unwrap_or(&default_lights);
         let lights = light_sections
             .iter()
@@ -365,25 +354,16 @@ impl SceneFile {
         let file_ka = file_material.and_then(|f| f.ka.or(f.kd));
         let material = Material {
             ka: match m.ka {
-                Some(c) => rgb("material.ka", c)?,
+                Some(_) => rgb("material.ka", m.ka)?,
                 None => file_ka.unwrap_or(defaults.ka),
             },
             kd: match m.kd {
-                Some(c) => rgb("material.kd", c)?,
+                Some(_) => rgb("material.kd", m.kd)?,
                 None => file_kd.unwrap_or(defaults.kd),
             },
-            ks: rgb("material.ks", m.ks.unwrap_or([255, 255, 255]))?,
-            shininess: non_negative("material.shininess", m.shininess.unwrap_or(32.0))?,
+            ks: rgb("material.ks", m.ks)?,
+            shininess: number("material.shininess", m.shininess)?,
         };
-        if material.shininess > 10_000.0 {
-            return Err(value_error(
-                "material.shininess",
-                format!(
-                    "must be at most 10000, got {}",
-                    format_number(material.shininess)
-                ),
-            ));
-        }
         scene.camera = camera;
         scene.ambient = ambient;
         scene.lights = lights;
@@ -413,12 +393,20 @@ pub fn model_path(source: &str, base_dir: &Path) -> PathBuf {
 
 fn resolve_light(k: usize, l: &LightSection) -> Result<Light, SceneError> {
     let key = |field: &str| format!("lights[{k}].{field}");
+    // The light's keys are checked against the table's `lights.*` entries.
+    let checked = |field: &str, e: String| value_error(key(field), e);
+    let vector = |field: &str, v: [f32; 3]| {
+        params::get(&format!("lights.{field}"))
+            .check_vec3(v)
+            .map(Vec3::from_array)
+            .map_err(|e| checked(field, e))
+    };
     let kind = match (l.kind, l.position, l.direction) {
         (LightKindName::Point, Some(p), None) => LightKind::Point {
-            position: vec3(&key("position"), p)?,
+            position: vector("position", p)?,
         },
         (LightKindName::Directional, None, Some(d)) => {
-            let direction = vec3(&key("direction"), d)?;
+            let direction = vector("direction", d)?;
             if direction == Vec3::ZERO {
                 return Err(value_error(key("direction"), "must not be zero"));
             }
@@ -437,50 +425,49 @@ fn resolve_light(k: usize, l: &LightSection) -> Result<Light, SceneError> {
             ));
         }
     };
+    let color = params::get("lights.color");
+    let color = color
+        .check_rgb(l.color.unwrap_or_else(|| color.default_rgb()))
+        .map_err(|e| checked("color", e))?;
+    let intensity = params::get("lights.intensity");
+    let intensity = intensity
+        .check(l.intensity.unwrap_or_else(|| intensity.default_number()))
+        .map_err(|e| checked("intensity", e))?;
     Ok(Light {
         kind,
-        color: rgb(&key("color"), l.color.unwrap_or([255; 3]))?,
-        intensity: non_negative(&key("intensity"), l.intensity.unwrap_or(1.0))?,
+        color: color.to_rgb(),
+        intensity,
         attenuation: shadelab_core::NO_ATTENUATION,
     })
 }
 
-fn rgb8(key: &str, c: [i64; 3]) -> Result<Rgb8, SceneError> {
-    if let Some(v) = c.iter().find(|v| !(0..=255).contains(*v)) {
-        return Err(value_error(
-            key,
-            format!("each channel must be 0..=255, got {v}"),
-        ));
-    }
-    Ok(Rgb8::new(c[0] as u8, c[1] as u8, c[2] as u8))
+/// The colour at `key`, or its default, checked against the table's range.
+fn rgb8(key: &str, c: Option<[i64; 3]>) -> Result<Rgb8, SceneError> {
+    let p = params::get(key);
+    p.check_rgb(c.unwrap_or_else(|| p.default_rgb()))
+        .map_err(|e| value_error(key, e))
 }
 
-fn rgb(key: &str, c: [i64; 3]) -> Result<Rgb, SceneError> {
+fn rgb(key: &str, c: Option<[i64; 3]>) -> Result<Rgb, SceneError> {
     Ok(rgb8(key, c)?.to_rgb())
 }
 
-fn finite(key: &str, v: f32) -> Result<f32, SceneError> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(value_error(
-            key,
-            format!("must be a finite number, got {}", format_number(v)),
-        ))
-    }
+/// The number at `key`, or its default, checked against the table's range.
+fn number(key: &str, v: Option<f32>) -> Result<f32, SceneError> {
+    let p = params::get(key);
+    p.check(v.unwrap_or_else(|| p.default_number()))
+        .map_err(|e| value_error(key, e))
 }
 
-fn non_negative(key: &str, v: f32) -> Result<f32, SceneError> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(value_error(
-            key,
-            format!("must be a finite number ≥ 0, got {}", format_number(v)),
-        ))
-    }
+/// A whole number at `key`, checked against the table's range.
+fn whole(key: &str, v: u32) -> Result<u32, SceneError> {
+    params::get(key)
+        .check_whole(i64::from(v))
+        .map_err(|e| value_error(key, e))?;
+    Ok(v)
 }
 
+/// A camera vector: finite and within the scene's coordinates.
 fn vec3(key: &str, v: [f32; 3]) -> Result<Vec3, SceneError> {
     let given = v;
     let v = Vec3::from_array(v);

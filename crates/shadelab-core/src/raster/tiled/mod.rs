@@ -280,15 +280,7 @@ impl Rasterize for TiledRasterizer {
             .for_each(|(index, out)| {
                 let mut band = scratch_band(scratch);
                 let output = Output::Counts(out);
-                band_pass(
-                    simd,
-                    &mut band,
-                    index,
-                    chunks,
-                    &FlatShader,
-                    options,
-                    output,
-                );
+                band_pass(simd, &mut band, index, chunks, &FlatShader, options, output);
             });
         counts
     }

@@ -1,0 +1,610 @@
+//! Every user-facing number, colour, vector, switch and name of a scene,
+//! declared once: its scene-file key, kind, default, range, unit and help.
+//!
+//! The scene file's checks (`shadelab-io`) take their ranges and messages
+//! from here, the command line's override flags their help, and the page
+//! its defaults, ranges and choice lists, from [`schema_json`] (served as
+//! `params.json`). Adding a parameter is one entry in [`all`]'s table, then
+//! its use where it acts. Defaults that belong to a type of the core
+//! ([`Material::default`], [`RenderOptions::default`]) are read from it, so
+//! they stay declared where they act.
+//!
+//! The enumerated choices are declared with their types ([`crate::choice`]);
+//! the schema lists them too, by scene-file key.
+
+use std::sync::OnceLock;
+
+use serde_json::{json, Value as Json};
+
+use crate::choice::Choice;
+use crate::color::Rgb8;
+use crate::light::{Material, Specular};
+use crate::limits::{MAX_IMAGE_SIDE, MAX_SCENE_COORDINATE};
+use crate::models::BUILTIN_MODELS;
+use crate::palette::Palette;
+use crate::scene::{Interpolation, Polygons, Rasterizer, RenderOptions, Shading};
+use crate::scene::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
+use crate::text::format_number;
+
+/// Smallest `render.zoom`.
+pub const MIN_ZOOM: f32 = 0.1;
+/// Largest `render.zoom`.
+pub const MAX_ZOOM: f32 = 100.0;
+
+/// What a parameter's value is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// A finite number within `min..=max`.
+    Number,
+    /// A whole number within `min..=max`.
+    Integer,
+    /// Three whole numbers (red, green, blue), each within `min..=max`.
+    Rgb,
+    /// Three finite numbers, each within `min..=max`.
+    Vec3,
+    /// True or false.
+    Bool,
+    /// A non-empty text.
+    Text,
+}
+
+impl Kind {
+    /// The kind's name in the schema.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Number => "number",
+            Kind::Integer => "integer",
+            Kind::Rgb => "rgb",
+            Kind::Vec3 => "vec3",
+            Kind::Bool => "bool",
+            Kind::Text => "text",
+        }
+    }
+}
+
+/// A parameter's value: a default or a typical value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Value {
+    /// A number (of kind number or integer).
+    Number(f64),
+    /// Three numbers (of kind rgb or vec3).
+    Three([f64; 3]),
+    /// A switch.
+    Bool(bool),
+    /// A text.
+    Text(&'static str),
+}
+
+/// One user-facing parameter of a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Param {
+    /// The scene-file key, `section.key`; a light's are `lights.key` (each
+    /// `[[lights]]` table's `key`).
+    pub key: &'static str,
+    /// What its value is.
+    pub kind: Kind,
+    /// The value a scene without the key gets; `None` when leaving it out
+    /// means something else ([`Param::absent`]).
+    pub default: Option<Value>,
+    /// What leaving the key out means when there is no default ("the
+    /// model's own", "floating point"); empty otherwise.
+    pub absent: &'static str,
+    /// The value a control that turns the parameter on starts from, when
+    /// it has no default.
+    pub typical: Option<Value>,
+    /// The smallest value (of each component); 0 for switches and texts.
+    pub min: f64,
+    /// The largest value (of each component); 0 for switches and texts.
+    pub max: f64,
+    /// The unit of the value ("degrees", "pixels"), or empty.
+    pub unit: &'static str,
+    /// One sentence saying what it does.
+    pub help: &'static str,
+    /// The key that must be set for this one to be (`render.palette_offset`
+    /// needs `render.palette_shades`), or empty.
+    pub needs: &'static str,
+}
+
+impl Param {
+    /// `min..=max` with the unit, as messages and help show it
+    /// ("0..=180 degrees", "each channel 0..=255", "within ±1e30").
+    pub fn range_text(&self) -> String {
+        let unit = if self.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", self.unit)
+        };
+        let (lo, hi) = (num(self.min), num(self.max));
+        match self.kind {
+            Kind::Vec3 => format!("within ±{hi}{unit}"),
+            Kind::Rgb => format!("each channel {lo}..={hi}"),
+            Kind::Bool | Kind::Text => String::new(),
+            Kind::Number | Kind::Integer => format!("{lo}..={hi}{unit}"),
+        }
+    }
+
+    /// The help with the range and the default, for a flag's or a control's text.
+    pub fn long_help(&self) -> String {
+        let range = self.range_text();
+        let mut text = self.help.trim_end_matches('.').to_owned();
+        if !range.is_empty() {
+            text.push_str(&format!("; {range}"));
+        }
+        match (&self.default, self.absent) {
+            (Some(v), _) => text.push_str(&format!("; default {}", self.show(v))),
+            (None, absent) if !absent.is_empty() => {
+                text.push_str(&format!("; unset: {absent}"));
+            }
+            _ => {}
+        }
+        text
+    }
+
+    /// `v` (a number of this parameter) if it is within range, or what is
+    /// wrong, without the key ("must be 0..=180 degrees, got 200"). A
+    /// number the scene file holds in single precision is compared with the
+    /// bounds in single precision.
+    ///
+    /// # Errors
+    /// The problem, for the caller to prefix with the key it read.
+    pub fn check(&self, v: f32) -> Result<f32, String> {
+        let (lo, hi) = (self.min as f32, self.max as f32);
+        if v.is_finite() && (lo..=hi).contains(&v) {
+            Ok(v)
+        } else {
+            Err(format!(
+                "must be {}, got {}",
+                self.range_text(),
+                format_number(v)
+            ))
+        }
+    }
+
+    /// A whole number of this parameter if it is within range, or what is wrong.
+    ///
+    /// # Errors
+    /// As [`Param::check`].
+    pub fn check_whole(&self, v: i64) -> Result<i64, String> {
+        if (self.min..=self.max).contains(&(v as f64)) {
+            Ok(v)
+        } else {
+            Err(format!("must be {}, got {v}", self.range_text()))
+        }
+    }
+
+    /// A colour of this parameter if every channel is within range, or what is wrong.
+    ///
+    /// # Errors
+    /// As [`Param::check`].
+    pub fn check_rgb(&self, c: [i64; 3]) -> Result<Rgb8, String> {
+        match c
+            .iter()
+            .find(|&&v| !(self.min..=self.max).contains(&(v as f64)))
+        {
+            Some(v) => Err(format!(
+                "each channel must be {}..={}, got {v}",
+                num(self.min),
+                num(self.max)
+            )),
+            None => Ok(Rgb8::new(c[0] as u8, c[1] as u8, c[2] as u8)),
+        }
+    }
+
+    /// A vector of this parameter if it is finite and within range, or what is wrong.
+    ///
+    /// # Errors
+    /// As [`Param::check`].
+    pub fn check_vec3(&self, v: [f32; 3]) -> Result<[f32; 3], String> {
+        let hi = self.max as f32;
+        if v.iter().all(|c| c.is_finite() && c.abs() <= hi) {
+            Ok(v)
+        } else {
+            Err(format!(
+                "must be finite and {}, got [{}]",
+                self.range_text(),
+                v.map(format_number).join(", ")
+            ))
+        }
+    }
+
+    /// The default as a number; panics when it is not one (a mistake in the table).
+    pub fn default_number(&self) -> f32 {
+        match self.default {
+            Some(Value::Number(v)) => v as f32,
+            _ => panic!("{} has no default number", self.key),
+        }
+    }
+
+    /// The default as three numbers; panics when it is not that.
+    pub fn default_three(&self) -> [f64; 3] {
+        match self.default {
+            Some(Value::Three(v)) => v,
+            _ => panic!("{} has no default of three numbers", self.key),
+        }
+    }
+
+    /// The default as a colour; panics when it is not three numbers.
+    pub fn default_rgb(&self) -> [i64; 3] {
+        self.default_three().map(|c| c as i64)
+    }
+
+    /// The default as a switch; panics when it is not one.
+    pub fn default_bool(&self) -> bool {
+        match self.default {
+            Some(Value::Bool(b)) => b,
+            _ => panic!("{} has no default switch", self.key),
+        }
+    }
+
+    /// `v` as help and messages show it.
+    fn show(&self, v: &Value) -> String {
+        match *v {
+            Value::Number(x) => num(x),
+            Value::Three(c) => c.map(num).join(","),
+            Value::Bool(b) => b.to_string(),
+            Value::Text(t) => t.to_owned(),
+        }
+    }
+
+    /// `v` as JSON: whole numbers of integer and colour kinds without a fraction.
+    fn json(&self, v: &Value) -> Json {
+        let whole = matches!(self.kind, Kind::Integer | Kind::Rgb);
+        let n = |x: f64| if whole { json!(x as i64) } else { json!(x) };
+        match *v {
+            Value::Number(x) => n(x),
+            Value::Three(c) => Json::Array(c.iter().map(|&x| n(x)).collect()),
+            Value::Bool(b) => json!(b),
+            Value::Text(t) => json!(t),
+        }
+    }
+}
+
+/// A bound or value as messages show it ("0.1", "100", "1e30").
+fn num(v: f64) -> String {
+    format_number(v as f32)
+}
+
+/// A single-precision constant as the decimal it is written as (`0.1`,
+/// not `0.10000000149011612`), for the table and the schema.
+fn decimal(v: f32) -> f64 {
+    format!("{v}").parse().unwrap_or(f64::from(v))
+}
+
+/// Every user-facing parameter, in the order the documentation lists them.
+pub fn all() -> &'static [Param] {
+    static TABLE: OnceLock<Vec<Param>> = OnceLock::new();
+    TABLE.get_or_init(table)
+}
+
+/// The parameter of scene-file key `key`.
+///
+/// # Panics
+/// When no parameter has that key: keys are written in code, and the
+/// tests go through every one.
+pub fn get(key: &str) -> &'static Param {
+    all()
+        .iter()
+        .find(|p| p.key == key)
+        .unwrap_or_else(|| panic!("no parameter {key}"))
+}
+
+/// The table. Entries are built by [`entry`] and completed with
+/// `Param { field, ..entry(...) }` where they have more than a range.
+fn table() -> Vec<Param> {
+    let material = Material::default();
+    let options = RenderOptions::default();
+    let rgb = |c: Rgb8| Some(Value::Three(c.0.map(f64::from)));
+    let white = Some(Value::Three([255.0; 3]));
+    let number = |v: f64| Some(Value::Number(v));
+    let max_detail = BUILTIN_MODELS
+        .iter()
+        .map(|m| m.detail_range.1)
+        .max()
+        .unwrap_or(0);
+    vec![
+        Param {
+            default: Some(Value::Text("teapot")),
+            ..entry("model.source", Kind::Text, 0.0, 0.0, "",
+                "A built-in model's name or a mesh file (.obj, .stl, .ply, .gltf, .glb), relative to the scene file.")
+        },
+        Param {
+            absent: "the model's own",
+            ..entry("model.detail", Kind::Integer, 0.0, f64::from(max_detail), "",
+                "Tessellation level of a built-in model, within that model's own range.")
+        },
+        Param {
+            absent: "the model's own (none for a file)",
+            ..entry("model.crease_angle", Kind::Number, 0.0, 180.0, "degrees",
+                "No smoothing of vertex normals across edges sharper than this.")
+        },
+        Param {
+            default: white,
+            ..entry("ambient.color", Kind::Rgb, 0.0, 255.0, "", "Colour of the ambient light.")
+        },
+        Param {
+            default: number(0.2),
+            ..entry("ambient.intensity", Kind::Number, 0.0, 100.0, "",
+                "Intensity multiplying the ambient light's colour.")
+        },
+        Param {
+            default: Some(Value::Three([2.0, 2.0, 3.0])),
+            ..entry("lights.position", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
+                decimal(MAX_SCENE_COORDINATE), "",
+                "Where a point light is, in world coordinates (the default light's position).")
+        },
+        Param {
+            absent: "required by a directional light",
+            typical: Some(Value::Three([-1.0, -1.0, -1.0])),
+            ..entry("lights.direction", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
+                decimal(MAX_SCENE_COORDINATE), "",
+                "The direction a directional light's rays travel, not zero.")
+        },
+        Param {
+            default: white,
+            ..entry("lights.color", Kind::Rgb, 0.0, 255.0, "", "Colour of a light.")
+        },
+        Param {
+            default: number(1.0),
+            ..entry("lights.intensity", Kind::Number, 0.0, 100.0, "",
+                "Intensity multiplying a light's colour.")
+        },
+        Param {
+            default: rgb(Rgb8::from_rgb(material.ka)),
+            ..entry("material.ka", Kind::Rgb, 0.0, 255.0, "", "Ambient reflectance Ka.")
+        },
+        Param {
+            default: rgb(Rgb8::from_rgb(material.kd)),
+            ..entry("material.kd", Kind::Rgb, 0.0, 255.0, "", "Diffuse reflectance Kd.")
+        },
+        Param {
+            default: rgb(Rgb8::from_rgb(material.ks)),
+            ..entry("material.ks", Kind::Rgb, 0.0, 255.0, "", "Specular reflectance Ks.")
+        },
+        Param {
+            default: number(decimal(material.shininess)),
+            ..entry("material.shininess", Kind::Number, 0.0, 10000.0, "",
+                "Specular exponent: the larger, the smaller and sharper the highlight.")
+        },
+        Param {
+            default: number(f64::from(options.width)),
+            ..entry("render.width", Kind::Integer, 1.0, f64::from(MAX_IMAGE_SIDE), "pixels",
+                "Width of the image.")
+        },
+        Param {
+            default: number(f64::from(options.height)),
+            ..entry("render.height", Kind::Integer, 1.0, f64::from(MAX_IMAGE_SIDE), "pixels",
+                "Height of the image.")
+        },
+        Param {
+            default: rgb(options.background),
+            ..entry("render.background", Kind::Rgb, 0.0, 255.0, "", "Colour where nothing is drawn.")
+        },
+        Param {
+            default: Some(Value::Bool(options.cull_backfaces)),
+            ..entry("render.cull_backfaces", Kind::Bool, 0.0, 0.0, "",
+                "Skip polygons facing away from the viewer (false: draw them lit from behind).")
+        },
+        Param {
+            default: Some(Value::Bool(options.gouraud_specular)),
+            ..entry("render.gouraud_specular", Kind::Bool, 0.0, 0.0, "",
+                "Include the specular term in Gouraud shading's vertex lighting.")
+        },
+        Param {
+            absent: "floating point",
+            typical: number(8.0),
+            ..entry("render.fixed_point_bits", Kind::Integer, f64::from(MIN_FRACTION_BITS),
+                f64::from(MAX_FRACTION_BITS), "bits",
+                "Step attributes in fixed point with this many fraction bits (scanline rasterizer).")
+        },
+        Param {
+            absent: "true colour",
+            typical: number(8.0),
+            ..entry("render.palette_shades", Kind::Integer, f64::from(Palette::MIN_SHADES),
+                f64::from(Palette::ENTRIES), "shades",
+                "Draw with an indexed palette of this many shades of the material colour (scanline rasterizer).")
+        },
+        Param {
+            default: number(0.0),
+            needs: "render.palette_shades",
+            ..entry("render.palette_offset", Kind::Integer, 0.0,
+                f64::from(Palette::ENTRIES - Palette::MIN_SHADES), "",
+                "The palette entry of the darkest shade; offset + shades is at most 256.")
+        },
+        Param {
+            default: number(0.0),
+            ..entry("render.yaw", Kind::Number, -1e6, 1e6, "degrees",
+                "Orbit the camera about its up axis.")
+        },
+        Param {
+            default: number(0.0),
+            ..entry("render.pitch", Kind::Number, -180.0, 180.0, "degrees",
+                "Orbit the camera towards its up axis; the elevation stops at ±89 degrees.")
+        },
+        Param {
+            default: number(1.0),
+            ..entry("render.zoom", Kind::Number, decimal(MIN_ZOOM), decimal(MAX_ZOOM), "",
+                "Magnification: the field of view narrows to 2·atan(tan(fov_y/2)/zoom).")
+        },
+    ]
+}
+
+/// A parameter with a range and no default yet.
+fn entry(
+    key: &'static str,
+    kind: Kind,
+    min: f64,
+    max: f64,
+    unit: &'static str,
+    help: &'static str,
+) -> Param {
+    Param {
+        key,
+        kind,
+        default: None,
+        absent: "",
+        typical: None,
+        min,
+        max,
+        unit,
+        help,
+        needs: "",
+    }
+}
+
+/// A choice's list for the schema: its default and each value's name and help.
+fn choice<T: Choice + Default>(key: &str) -> Json {
+    json!({
+        "key": key,
+        "what": T::WHAT,
+        "default": T::default().name(),
+        "values": T::VALUES.iter().map(|v| json!({"name": v.name(), "help": v.help()})).collect::<Vec<_>>(),
+    })
+}
+
+/// The schema of every parameter and choice, as the page reads it at start-up:
+/// `{"params": [{key, kind, default, absent, typical, min, max, unit, help, needs}],
+/// "choices": [{key, what, default, values: [{name, help}]}]}`.
+pub fn schema() -> Json {
+    let params = all()
+        .iter()
+        .map(|p| {
+            json!({
+                "key": p.key,
+                "kind": p.kind.name(),
+                "default": p.default.as_ref().map(|v| p.json(v)),
+                "absent": p.absent,
+                "typical": p.typical.as_ref().map(|v| p.json(v)),
+                "min": p.min,
+                "max": p.max,
+                "unit": p.unit,
+                "help": p.help,
+                "needs": p.needs,
+            })
+        })
+        .collect::<Vec<_>>();
+    let choices = vec![
+        choice::<Shading>("render.shading"),
+        choice::<Interpolation>("render.interpolation"),
+        choice::<Rasterizer>("render.rasterizer"),
+        choice::<Polygons>("render.polygons"),
+        choice::<Specular>("render.specular"),
+    ];
+    json!({ "params": params, "choices": choices })
+}
+
+/// [`schema`] as JSON text (the viewer's `params.json`).
+pub fn schema_json() -> String {
+    schema().to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_default_and_typical_value_is_within_its_range() {
+        for p in all() {
+            assert!(p.min <= p.max, "{}", p.key);
+            assert!(!p.help.is_empty() && p.help.ends_with('.'), "{}", p.key);
+            assert!(
+                p.default.is_some() == p.absent.is_empty(),
+                "{}: a default or what absence means, not both",
+                p.key
+            );
+            for v in p.default.iter().chain(&p.typical) {
+                match (p.kind, *v) {
+                    (Kind::Number, Value::Number(x)) => {
+                        assert!(p.check(x as f32).is_ok(), "{}", p.key)
+                    }
+                    (Kind::Integer, Value::Number(x)) => {
+                        assert_eq!(x.fract(), 0.0, "{}", p.key);
+                        assert!(p.check_whole(x as i64).is_ok(), "{}", p.key);
+                    }
+                    (Kind::Rgb, Value::Three(c)) => {
+                        assert!(p.check_rgb(c.map(|x| x as i64)).is_ok(), "{}", p.key)
+                    }
+                    (Kind::Vec3, Value::Three(c)) => {
+                        assert!(p.check_vec3(c.map(|x| x as f32)).is_ok(), "{}", p.key)
+                    }
+                    (Kind::Bool, Value::Bool(_)) => {}
+                    (Kind::Text, Value::Text(t)) => assert!(!t.is_empty()),
+                    (kind, v) => panic!("{}: a {kind:?} with a default {v:?}", p.key),
+                }
+            }
+        }
+        let mut keys: Vec<_> = all().iter().map(|p| p.key).collect();
+        keys.sort_unstable();
+        keys.dedup();
+        assert_eq!(keys.len(), all().len(), "keys repeat");
+    }
+
+    #[test]
+    fn bounds_are_the_decimals_written() {
+        assert_eq!(get("render.zoom").min, 0.1);
+        assert_eq!(get("lights.position").max, 1e30);
+    }
+
+    #[test]
+    fn the_defaults_are_the_cores() {
+        assert_eq!(get("material.kd").default_rgb(), [200, 60, 60]);
+        assert_eq!(get("material.shininess").default_number(), 32.0);
+        assert_eq!(get("render.width").default_number(), 800.0);
+        assert!(get("render.cull_backfaces").default_bool());
+    }
+
+    #[test]
+    fn messages_say_the_range_and_the_value() {
+        let crease = get("model.crease_angle");
+        assert_eq!(
+            crease.check(200.0).unwrap_err(),
+            "must be 0..=180 degrees, got 200"
+        );
+        assert_eq!(
+            get("render.zoom").check(0.0).unwrap_err(),
+            "must be 0.1..=100, got 0"
+        );
+        assert_eq!(
+            get("material.ka").check_rgb([0, 256, 0]).unwrap_err(),
+            "each channel must be 0..=255, got 256"
+        );
+        assert_eq!(
+            get("lights.position")
+                .check_vec3([0.0, f32::NAN, 1.0])
+                .unwrap_err(),
+            "must be finite and within ±1e30, got [0, NaN, 1]"
+        );
+        assert!(get("ambient.intensity").check(f32::NAN).is_err());
+    }
+
+    #[test]
+    fn the_schema_round_trips_and_holds_every_key_and_choice() {
+        let text = schema_json();
+        let read: Json = serde_json::from_str(&text).unwrap();
+        assert_eq!(read, schema());
+        let params = read["params"].as_array().unwrap();
+        assert_eq!(params.len(), all().len());
+        for (p, j) in all().iter().zip(params) {
+            assert_eq!(j["key"], p.key);
+            assert_eq!(j["kind"], p.kind.name());
+            assert_eq!(j["min"].as_f64(), Some(p.min), "{}", p.key);
+            assert_eq!(j["max"].as_f64(), Some(p.max), "{}", p.key);
+            assert_eq!(j["help"], p.help);
+            assert_eq!(j["default"].is_null(), p.default.is_none(), "{}", p.key);
+        }
+        let kd = params.iter().find(|j| j["key"] == "material.kd").unwrap();
+        assert_eq!(kd["default"], json!([200, 60, 60]));
+        let choices = read["choices"].as_array().unwrap();
+        let shading = choices
+            .iter()
+            .find(|c| c["key"] == "render.shading")
+            .unwrap();
+        assert_eq!(shading["default"], "phong");
+        let names: Vec<_> = shading["values"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v["name"].clone())
+            .collect();
+        assert_eq!(names, Shading::ALL.map(|s| json!(s.name())));
+    }
+}
