@@ -368,6 +368,9 @@ pub struct SceneOverrides {
     /// Intensity of the (first) light.
     #[arg(long, allow_negative_numbers = true)]
     pub light_intensity: Option<f32>,
+    /// Attenuation of the (first) light, CONSTANT,LINEAR,QUADRATIC.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub light_attenuation: Option<[f32; 3]>,
     /// Ambient reflectance Ka, R,G,B in 0–255.
     #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
     pub ka: Option<[i64; 3]>,
@@ -548,7 +551,10 @@ impl SceneOverrides {
         if self.ambient_intensity.is_some() {
             scene.ambient.intensity = self.ambient_intensity;
         }
-        if self.light_pos.is_some() || self.light_color.is_some() || self.light_intensity.is_some()
+        if self.light_pos.is_some()
+            || self.light_color.is_some()
+            || self.light_intensity.is_some()
+            || self.light_attenuation.is_some()
         {
             let lights = scene.lights.get_or_insert_with(Vec::new);
             if lights.is_empty() {
@@ -565,6 +571,9 @@ impl SceneOverrides {
             }
             if self.light_intensity.is_some() {
                 light.intensity = self.light_intensity;
+            }
+            if self.light_attenuation.is_some() {
+                light.attenuation = self.light_attenuation;
             }
         }
         if self.ka.is_some() {

@@ -58,6 +58,11 @@ const PARAM_FLAGS: &[(&str, &str, &str)] = &[
     ),
     ("light_color", "lights.color", " (R,G,B; the first light)"),
     ("light_intensity", "lights.intensity", " (the first light)"),
+    (
+        "light_attenuation",
+        "lights.attenuation",
+        " (CONSTANT,LINEAR,QUADRATIC; the first light)",
+    ),
     ("ka", "material.ka", " (R,G,B)"),
     ("kd", "material.kd", " (R,G,B)"),
     ("ks", "material.ks", " (R,G,B)"),

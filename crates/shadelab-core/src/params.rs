@@ -18,7 +18,7 @@ use serde_json::{json, Value as Json};
 
 use crate::choice::Choice;
 use crate::color::Rgb8;
-use crate::light::{Material, Specular};
+use crate::light::{Material, Specular, NO_ATTENUATION};
 use crate::limits::{MAX_IMAGE_SIDE, MAX_SCENE_COORDINATE};
 use crate::models::BUILTIN_MODELS;
 use crate::palette::Palette;
@@ -347,6 +347,13 @@ fn table() -> Vec<Param> {
             default: number(1.0),
             ..entry("lights.intensity", Kind::Number, 0.0, 100.0, "",
                 "Intensity multiplying a light's colour.")
+        },
+        Param {
+            default: Some(Value::Three(NO_ATTENUATION.map(f64::from))),
+            ..entry("lights.attenuation", Kind::Vec3, 0.0, 1e6, "",
+                "A point light's fall-off with distance d: its light is divided by \
+                 constant + linear·d + quadratic·d² (the three numbers, as OpenGL's); \
+                 [1, 0, 0] is none.")
         },
         Param {
             default: rgb(Rgb8::from_rgb(material.ka)),

@@ -183,6 +183,10 @@ pub struct LightSection {
     pub color: Option<[i64; 3]>,
     /// Default 1.
     pub intensity: Option<f32>,
+    /// A point light's fall-off: constant, linear, quadratic; default
+    /// `[1, 0, 0]`, none.
+    #[serde(default, deserialize_with = "exactly::three_or_none")]
+    pub attenuation: Option<[f32; 3]>,
 }
 
 /// `[material]`
@@ -256,6 +260,7 @@ impl LightSection {
             direction: None,
             color: None,
             intensity: None,
+            attenuation: None,
         }
     }
 }

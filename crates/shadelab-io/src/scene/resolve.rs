@@ -433,11 +433,22 @@ fn resolve_light(k: usize, l: &LightSection) -> Result<Light, SceneError> {
     let intensity = intensity
         .check(l.intensity.unwrap_or_else(|| intensity.default_number()))
         .map_err(|e| checked("intensity", e))?;
+    let attenuation = params::get("lights.attenuation");
+    let attenuation = match (l.attenuation, kind) {
+        (None, _) => attenuation.default_three().map(|k| k as f32),
+        (Some(k), LightKind::Point { .. }) => vector("attenuation", k)?.to_array(),
+        (Some(_), LightKind::Directional { .. }) => {
+            return Err(value_error(
+                key("attenuation"),
+                "only a point light has attenuation (a directional light has no distance)",
+            ));
+        }
+    };
     Ok(Light {
         kind,
         color: color.to_rgb(),
         intensity,
-        attenuation: shadelab_core::NO_ATTENUATION,
+        attenuation,
     })
 }
 
