@@ -365,6 +365,45 @@ test('a scene the renderer refuses shows its message and the last pictures stay'
   await page.close();
 });
 
+test("a point light's attenuation dims all three panels, from its slider to the link and the scene file", async () => {
+  const { page, problems } = await openViewer();
+  const mean = async (m) => {
+    const rgba = Buffer.from(await panelPixels(page, m), 'base64');
+    let sum = 0;
+    for (let i = 0; i < rgba.length; i += 4) sum += rgba[i] + rgba[i + 1] + rgba[i + 2];
+    return sum / (rgba.length / 4);
+  };
+  const before = {};
+  for (const m of METHODS) before[m] = await mean(m);
+  // The light is about 4 units from the teapot: k2 = 0.1 divides its light by about 2.6.
+  const quadratic = page.getByLabel('Fall-off: quadratic', { exact: true });
+  await quadratic.focus();
+  for (let i = 0; i < 10; i++) await page.keyboard.press('ArrowRight');
+  await settle(page);
+  assert.deepEqual(await page.evaluate(() => window.shadelab.state.lights[0].attenuation), [1, 0, 0.1]);
+  for (const m of METHODS) {
+    const after = await mean(m);
+    assert.ok(after < before[m] * 0.85, `${m}: ${after} is darker than ${before[m]}`);
+  }
+  assert.match(await page.evaluate(() => window.shadelab.sceneToml('phong')), /\[\[lights\]\]\n(?:.*\n)*?attenuation = \[1(?:\.0)?, 0(?:\.0)?, 0\.1\]\n/);
+  await page.waitForFunction(() => location.hash.includes('lightAtt='));
+  const hash = await page.evaluate(() => location.hash);
+  const pictures = await digests(page);
+  const second = await openViewer(hash);
+  assert.deepEqual(await second.page.evaluate(() => window.shadelab.state.lights[0].attenuation), [1, 0, 0.1]);
+  assert.deepEqual(await digests(second.page), pictures);
+  // With two lights the link lists each one, its attenuation included.
+  await update(page, 's.lights.push({ ...s.lights[0], position: [-2, 1, 2], attenuation: [0.5, 0.2, 0] })');
+  await page.waitForFunction(() => location.hash.includes('lights='));
+  const third = await openViewer(await page.evaluate(() => location.hash));
+  assert.deepEqual(
+    await third.page.evaluate(() => window.shadelab.state.lights.map((l) => l.attenuation)),
+    [[1, 0, 0.1], [0.5, 0.2, 0]],
+  );
+  assert.deepEqual([...problems, ...second.problems, ...third.problems], []);
+  await Promise.all([page.close(), second.page.close(), third.page.close()]);
+});
+
 test('a link with the state reproduces the view', async () => {
   const { page, problems } = await openViewer();
   await update(page, `

@@ -125,6 +125,20 @@ export function buildForm(form, page) {
           },
         });
       }
+      // A point light's fall-off with distance: k0 + k1·d + k2·d² divides its light.
+      if (L().kind === 'point') {
+        for (const [term, i] of [['constant', 0], ['linear', 1], ['quadratic', 2]]) {
+          lc.range(block, {
+            name: `light-${n}-attenuation-${term}`, label: t(`light.attenuation.${term}`), ...spanOf(param('attenuation', 'light')),
+            get: () => L().attenuation[i],
+            set: (v) => {
+              const k = [...L().attenuation];
+              k[i] = v;
+              L().attenuation = k;
+            },
+          });
+        }
+      }
     });
     const add = el('button', { type: 'button', class: 'light-add', text: t('lights.add'), disabled: s().lights.length >= MAX_LIGHTS });
     add.addEventListener('click', () => {

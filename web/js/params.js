@@ -67,6 +67,7 @@ export const PARAMS = [
   { name: 'intensity', key: 'lights.intensity', link: 'lightI', group: 'light', slider: [0, 3], step: 0.01 },
   { name: 'position', key: 'lights.position', link: 'lightPos', group: 'light', slider: [-10, 10], step: 0.05 },
   { name: 'direction', key: 'lights.direction', link: 'lightDir', group: 'light', slider: [-1, 1], step: 0.01 },
+  { name: 'attenuation', key: 'lights.attenuation', link: 'lightAtt', group: 'light', slider: [0, 1], step: 0.01 },
 
   { name: 'material.ka', key: 'material.ka', link: 'ka', group: 'material' },
   { name: 'material.kd', key: 'material.kd', link: 'kd', group: 'material' },

@@ -138,6 +138,7 @@ export function sceneToml(state, method) {
       l.kind === 'point' ? `position = ${vec3(l.position)}` : `direction = ${vec3(l.direction)}`,
       `color = ${rgb(l.color)}`,
       `intensity = ${float(l.intensity)}`,
+      ...(l.kind === 'point' ? [`attenuation = ${vec3(l.attenuation)}`] : []),
       '',
     );
   }
@@ -179,19 +180,31 @@ export function sceneToml(state, method) {
 
 const round = (x, digits = 3) => Number(x.toFixed(digits));
 
-/** A light in a link: kind:x,y,z:r,g,b:intensity, and :off when it is off. */
+/**
+ * A light in a link: kind:x,y,z:r,g,b:intensity, then a point light's
+ * attenuation k0,k1,k2 when it has one, and :off when it is off.
+ */
 function lightToLink(l) {
   const f = (name, v) => formatLink(param(name, 'light'), v);
   const vector = l.kind === 'point' ? f('position', l.position) : f('direction', l.direction);
-  return [l.kind, vector, f('color', l.color), f('intensity', l.intensity), ...(l.on ? [] : ['off'])].join(':');
+  const attenuation = f('attenuation', l.attenuation);
+  const faded = l.kind === 'point' && attenuation !== f('attenuation', defaultLight().attenuation);
+  return [l.kind, vector, f('color', l.color), f('intensity', l.intensity), ...(faded ? [attenuation] : []), ...(l.on ? [] : ['off'])].join(':');
 }
 
 function lightFromLink(text) {
   const parts = text.split(':');
-  if (parts.length < 4 || parts.length > 5 || (parts.length === 5 && parts[4] !== 'off')) return undefined;
-  const [kind, vector, color, intensity] = parts;
+  if (parts.length < 4 || parts.length > 6) return undefined;
+  const [kind, vector, color, intensity, ...rest] = parts;
   const light = defaultLight();
   const read = (name, t) => parseLink(param(name, 'light'), t);
+  const off = rest.length > 0 && rest[rest.length - 1] === 'off';
+  const extra = off ? rest.slice(0, -1) : rest;
+  if (extra.length > 1 || (extra.length && kind !== 'point')) return undefined;
+  if (extra.length) {
+    light.attenuation = read('attenuation', extra[0]);
+    if (light.attenuation === undefined) return undefined;
+  }
   light.kind = read('kind', kind);
   light.color = read('color', color);
   light.intensity = read('intensity', intensity);
@@ -203,7 +216,7 @@ function lightFromLink(text) {
   } else {
     light.position = v;
   }
-  light.on = parts.length === 4;
+  light.on = !off;
   return light;
 }
 
@@ -227,7 +240,7 @@ export function toHash(state, view = defaultView()) {
   if (singlePointLight(state.lights)) {
     const [l] = state.lights;
     const [dl] = d.lights;
-    for (const name of ['color', 'intensity', 'position']) {
+    for (const name of ['color', 'intensity', 'position', 'attenuation']) {
       const q = param(name, 'light');
       if (formatLink(q, l[name]) !== formatLink(q, dl[name])) p.set(q.link, formatLink(q, l[name]));
     }
@@ -275,7 +288,7 @@ export function fromHash(hash) {
     if (lights.length <= MAX_LIGHTS && !lights.includes(undefined)) state.lights = lights;
     else invalid.push('lights');
   } else {
-    for (const name of ['color', 'intensity', 'position']) {
+    for (const name of ['color', 'intensity', 'position', 'attenuation']) {
       const q = param(name, 'light');
       read(q, q.link, (v) => (state.lights[0][name] = v));
     }
