@@ -414,3 +414,52 @@ fn negative_numbers_are_accepted_as_values() {
         ],
     ));
 }
+
+/// `--light-attenuation` is `[[lights]] attenuation` of the first light: the
+/// same picture either way, darker than without, and a directional light
+/// with attenuation is refused naming the key.
+#[test]
+fn light_attenuation_from_the_flag_or_the_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let light = "[[lights]]\nkind = \"point\"\nposition = [2.0, 2.0, 3.0]\n";
+    let scene = format!("[model]\nsource = \"sphere\"\n[render]\nwidth = 48\nheight = 36\n{light}");
+    write(dir.path(), "plain.toml", &scene);
+    write(
+        dir.path(),
+        "faded.toml",
+        format!("{scene}attenuation = [1.0, 0.0, 0.25]\n"),
+    );
+    for (args, out) in [
+        (vec!["plain.toml"], "plain.png"),
+        (vec!["faded.toml"], "file.png"),
+        (
+            vec!["plain.toml", "--light-attenuation", "1,0,0.25"],
+            "flag.png",
+        ),
+    ] {
+        let mut all = vec!["render"];
+        all.extend(args);
+        all.extend(["-o", out]);
+        assert_ok(&run(dir.path(), &all));
+    }
+    let read = |name: &str| Png::read(&dir.path().join(name));
+    let (plain, file, flag) = (read("plain.png"), read("file.png"), read("flag.png"));
+    assert_eq!(file, flag);
+    let sum = |p: &Png| -> u64 { p.rgb.iter().map(|&c| u64::from(c)).sum() };
+    assert!(
+        sum(&file) < sum(&plain) * 3 / 4,
+        "{} vs {}",
+        sum(&file),
+        sum(&plain)
+    );
+
+    let directional = "[[lights]]\nkind = \"directional\"\ndirection = [-1.0, -1.0, -1.0]\nattenuation = [1.0, 0.1, 0.0]\n";
+    write(dir.path(), "bad.toml", directional);
+    let out = run(dir.path(), &["render", "bad.toml", "-o", "bad.png"]);
+    assert!(!out.status.success());
+    assert!(
+        stderr(&out).contains("lights[0].attenuation: only a point light has attenuation"),
+        "{}",
+        stderr(&out)
+    );
+}

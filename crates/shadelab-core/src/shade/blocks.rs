@@ -13,7 +13,7 @@
 // Loops over channels index several arrays at once.
 #![allow(clippy::needless_range_loop)]
 
-use super::lanes::{pack, unit_normal, LaneLight, LightLanes, Surface, SurfaceLanes};
+use super::lanes::{pack, unit_normal, LaneLight, PlainPoint, Surface, SurfaceLanes};
 use super::model::Lighting;
 use crate::simd::{Simd, Vf, Vi};
 
@@ -112,7 +112,7 @@ impl PhongShader {
         lights
             .extend((lighting.lights.iter()).map(|light| LaneLight::of(light, &lighting.material)));
         let one_point_light = match lights[..] {
-            [light] if light.is_point() => Some(OnePointLight { surface, light }),
+            [light] if light.is_plain_point() => Some(OnePointLight { surface, light }),
             _ => None,
         };
         *self = PhongShader {
@@ -135,9 +135,8 @@ impl PhongShader {
     #[inline(always)]
     pub fn radiance<S: Simd>(&self, s: S, a: &[Vf<S>; MAX_ATTRS], specular: bool) -> [Vf<S>; 3] {
         let n = unit_normal([a[0], a[1], a[2]], 1.0);
-        let lights = self.lights.iter().map(|light| light.lanes(s));
         let k = self.surface.lanes(s);
-        let [out] = (self.surface).radiance(&k, lights, [n], [[a[3], a[4], a[5]]], specular);
+        let [out] = (self.surface).radiance(&k, &self.lights, [n], [[a[3], a[4], a[5]]], specular);
         out
     }
 }
@@ -161,8 +160,9 @@ impl Shader for PhongShader {
     }
 }
 
-/// Phong shading lit by exactly one point light, the common case: the
-/// model with no loop over lights and every constant already in lanes.
+/// Phong shading lit by exactly one point light without attenuation, the
+/// common case: the model with no loop over lights, no test of the light's
+/// kind, and every constant already in lanes.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct OnePointLight {
     surface: Surface,
@@ -173,7 +173,7 @@ pub(crate) struct OnePointLight {
 #[derive(Clone, Copy)]
 pub(crate) struct OneLightLanes<S: Simd> {
     surface: SurfaceLanes<S>,
-    light: LightLanes<S>,
+    light: PlainPoint<S>,
 }
 
 impl Shader for OnePointLight {
@@ -202,7 +202,7 @@ impl Shader for OnePointLight {
     fn lanes<S: Simd>(&self, s: S) -> OneLightLanes<S> {
         OneLightLanes {
             surface: self.surface.lanes(s),
-            light: self.light.lanes(s),
+            light: PlainPoint::new(&self.light, s),
         }
     }
 
@@ -229,13 +229,22 @@ impl OnePointLight {
     fn lit_groups<S: Simd, const G: usize>(
         &self,
         k: &OneLightLanes<S>,
-        _: S,
+        s: S,
         flip: f32,
         a: [&[Vf<S>; MAX_ATTRS]; G],
     ) -> [Vi<S>; G] {
-        let n = a.map(|a| unit_normal([a[0], a[1], a[2]], flip));
-        let p = a.map(|a| [a[3], a[4], a[5]]);
-        let out = self.surface.radiance(&k.surface, [k.light], n, p, true);
-        out.map(pack)
+        let zero = Vf::splat(s, 0.0);
+        let (mut n, mut p) = ([[zero; 3]; G], [[zero; 3]; G]);
+        for g in 0..G {
+            let a = a[g];
+            n[g] = unit_normal([a[0], a[1], a[2]], flip);
+            p[g] = [a[3], a[4], a[5]];
+        }
+        let out = self.surface.radiance(&k.surface, &[k.light], n, p, true);
+        let mut colors = [Vi::splat(s, 0); G];
+        for g in 0..G {
+            colors[g] = pack(out[g]);
+        }
+        colors
     }
 }

@@ -107,15 +107,26 @@ impl LaneLight {
         self.position.is_some()
     }
 
+    /// Whether it is a point light with no attenuation.
+    pub fn is_plain_point(&self) -> bool {
+        self.position.is_some() && self.attenuation.is_none()
+    }
+
     /// The light in lanes.
     #[inline(always)]
     pub fn lanes<S: Simd>(&self, s: S) -> LightLanes<S> {
+        // No closure (`Option::map`): see `Surface::radiance`.
+        #[allow(clippy::manual_map)]
+        let attenuation = match self.attenuation {
+            Some(k) => Some(splat_each(s, k)),
+            None => None,
+        };
         LightLanes {
             at: splat3(s, self.position.unwrap_or(self.towards)),
             point: self.position.is_some(),
-            diffuse: self.diffuse.map(|c| Vf::splat(s, c)),
-            specular: self.specular.map(|c| Vf::splat(s, c)),
-            attenuation: self.attenuation.map(|k| k.map(|k| Vf::splat(s, k))),
+            diffuse: splat_each(s, self.diffuse),
+            specular: splat_each(s, self.specular),
+            attenuation,
         }
     }
 }
@@ -144,19 +155,28 @@ impl Surface {
     #[inline(always)]
     pub fn lanes<S: Simd>(&self, s: S) -> SurfaceLanes<S> {
         SurfaceLanes {
-            ambient: self.ambient.map(|c| Vf::splat(s, c)),
+            ambient: splat_each(s, self.ambient),
             eye: splat3(s, self.eye),
         }
     }
 
     /// `x^p` for `G` blocks at once.
     #[inline(always)]
-    fn power<S: Simd, const G: usize>(&self, x: [Vf<S>; G]) -> [Vf<S>; G] {
+    fn power<S: Simd, const G: usize>(&self, mut x: [Vf<S>; G]) -> [Vf<S>; G] {
         match self.power {
-            Power::Whole(p) => pow_whole_groups(x, p),
-            Power::Fraction => x.map(|x| pow_unit(x, self.shininess)),
-            Power::Scalar => x.map(|x| power_scalar(x, self.shininess)),
+            Power::Whole(p) => return pow_whole_groups(x, p),
+            Power::Fraction => {
+                for x in &mut x {
+                    *x = pow_unit(*x, self.shininess);
+                }
+            }
+            Power::Scalar => {
+                for x in &mut x {
+                    *x = power_scalar(*x, self.shininess);
+                }
+            }
         }
+        x
     }
 
     /// The reflected light per channel, unclamped, at `G` blocks of 8 points
@@ -166,30 +186,42 @@ impl Surface {
     /// `n·l > 0` (`n·h` for Blinn's variant), each point light's terms divided
     /// by its attenuation when it has one.
     #[inline(always)]
-    pub fn radiance<S: Simd, const G: usize>(
+    pub fn radiance<S: Simd, L: ToLanes<S>, const G: usize>(
         &self,
         k: &SurfaceLanes<S>,
-        lights: impl IntoIterator<Item = LightLanes<S>>,
+        lights: &[L],
         n: [[Vf<S>; 3]; G],
         p: [[Vf<S>; 3]; G],
         specular: bool,
     ) -> [[Vf<S>; 3]; G] {
+        // Loops, not closures: a closure the compiler does not inline is
+        // compiled without the backend's target features, and each lane
+        // operation in it becomes a call.
         let zero = k.eye[0].splat_like(0.0);
-        let view: [[Vf<S>; 3]; G] = std::array::from_fn(|g| towards(&k.eye, &p[g]));
+        let mut view = [[zero; 3]; G];
+        for g in 0..G {
+            view[g] = towards(&k.eye, &p[g]);
+        }
         let mut out = [k.ambient; G];
         for light in lights {
-            let l: [[Vf<S>; 3]; G] = std::array::from_fn(|g| {
-                if light.point {
-                    towards(&light.at, &p[g])
-                } else {
-                    light.at
+            let light = light.lanes(zero.1);
+            let attenuated = !L::PLAIN_POINT && light.attenuation.is_some();
+            let mut l = [light.at; G];
+            if L::PLAIN_POINT || light.point {
+                for g in 0..G {
+                    l[g] = towards(&light.at, &p[g]);
                 }
-            });
-            let n_dot_l: [Vf<S>; G] = std::array::from_fn(|g| dot(&n[g], &l[g]));
-            let spec = if specular {
-                let cosine: [Vf<S>; G] = std::array::from_fn(|g| {
+            }
+            let mut n_dot_l = [zero; G];
+            for g in 0..G {
+                n_dot_l[g] = dot(&n[g], &l[g]);
+            }
+            let mut spec = [zero; G];
+            if specular {
+                let mut cosine = [zero; G];
+                for g in 0..G {
                     let (n, l, v) = (&n[g], &l[g], &view[g]);
-                    let cosine = if self.blinn {
+                    cosine[g] = if self.blinn {
                         dot(n, &normalize([l[0] + v[0], l[1] + v[1], l[2] + v[2]]))
                     } else {
                         // r·v with r = 2(n·l)n − l.
@@ -200,28 +232,27 @@ impl Surface {
                             n[2] * twice - l[2],
                         ];
                         dot(&r, v)
-                    };
-                    cosine.max(zero)
-                });
-                self.power(cosine)
-            } else {
-                [zero; G]
-            };
+                    }
+                    .max(zero);
+                }
+                spec = self.power(cosine);
+            }
             // A point light's 1 / (k0 + k1·d + k2·d²), when it has attenuation.
-            let fade = light.attenuation.map(|[k0, k1, k2]| {
-                std::array::from_fn::<Vf<S>, G, _>(|g| {
-                    let q = &light.at;
+            let mut fade = [zero; G];
+            if let (true, Some([k0, k1, k2])) = (attenuated, light.attenuation) {
+                let q = &light.at;
+                for g in 0..G {
                     let v = [q[0] - p[g][0], q[1] - p[g][1], q[2] - p[g][2]];
                     let d2 = dot(&v, &v);
                     let d = d2 * d2.rsqrt();
-                    d2.mul_add(k2, d.mul_add(k1, k0)).recip()
-                })
-            });
+                    fade[g] = d2.mul_add(k2, d.mul_add(k1, k0)).recip();
+                }
+            }
             for g in 0..G {
                 let lit = n_dot_l[g].gt(zero);
                 for c in 0..3 {
                     let mut add = n_dot_l[g].mul_add(light.diffuse[c], spec[g] * light.specular[c]);
-                    if let Some(fade) = &fade {
+                    if attenuated {
                         add = add * fade[g];
                     }
                     out[g][c] = out[g][c] + Vf::select(lit, add, zero);
@@ -230,6 +261,50 @@ impl Surface {
         }
         out
     }
+}
+
+/// A light as [`Surface::radiance`] takes it: prepared ([`LaneLight`],
+/// splatted at each use) or already in lanes ([`LightLanes`]).
+pub(crate) trait ToLanes<S: Simd> {
+    /// Known to be a point light without attenuation, so that the model
+    /// compiles with neither test (the common case: one such light).
+    const PLAIN_POINT: bool = false;
+    /// The light in lanes.
+    fn lanes(&self, s: S) -> LightLanes<S>;
+}
+
+impl<S: Simd> ToLanes<S> for LaneLight {
+    #[inline(always)]
+    fn lanes(&self, s: S) -> LightLanes<S> {
+        LaneLight::lanes(self, s)
+    }
+}
+
+/// A point light without attenuation, in lanes (see [`ToLanes::PLAIN_POINT`]).
+#[derive(Clone, Copy)]
+pub(crate) struct PlainPoint<S: Simd>(LightLanes<S>);
+
+impl<S: Simd> PlainPoint<S> {
+    /// `light` in lanes, which must be a point light without attenuation.
+    #[inline(always)]
+    pub fn new(light: &LaneLight, s: S) -> PlainPoint<S> {
+        debug_assert!(light.is_point() && light.attenuation.is_none());
+        PlainPoint(light.lanes(s))
+    }
+}
+
+impl<S: Simd> ToLanes<S> for PlainPoint<S> {
+    const PLAIN_POINT: bool = true;
+    #[inline(always)]
+    fn lanes(&self, _: S) -> LightLanes<S> {
+        self.0
+    }
+}
+
+/// Each of three numbers in lanes.
+#[inline(always)]
+fn splat_each<S: Simd>(s: S, c: [f32; 3]) -> [Vf<S>; 3] {
+    [Vf::splat(s, c[0]), Vf::splat(s, c[1]), Vf::splat(s, c[2])]
 }
 
 /// `x^p` lane by lane with `powf`, for exponents outside `pow_unit`'s range.
@@ -375,13 +450,8 @@ mod tests {
                     lane(4, &|t| 0.3 * t.sin()),
                     lane(5, &|t| 0.1 * t),
                 ];
-                let [got] = surface.radiance(
-                    &k,
-                    lights.iter().map(|l| l.lanes(s)),
-                    [unit_normal(n, 1.0)],
-                    [p],
-                    self.specular,
-                );
+                let [got] =
+                    surface.radiance(&k, &lights, [unit_normal(n, 1.0)], [p], self.specular);
                 let (mut nv, mut pv, mut gv) = ([[0.0; 8]; 3], [[0.0; 8]; 3], [[0.0; 8]; 3]);
                 for c in 0..3 {
                     n[c].store(&mut nv[c]);
