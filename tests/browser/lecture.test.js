@@ -506,7 +506,7 @@ test('four lights of both kinds light the panels as `shadelab render` does; mark
   shadelab('compare', file, '-o', path.join(TMP, 'lights-compare.png'));
   // A link made before the page had several lights still means what it meant.
   const old = await openViewer('#light=255,240,200&lightI=1.4&lightPos=-2,3,1.5');
-  assert.deepEqual(await old.page.evaluate(() => window.shadelab.state.lights), [{ on: true, kind: 'point', color: [255, 240, 200], intensity: 1.4, position: [-2, 3, 1.5], direction: [-1, -1, -1] }]);
+  assert.deepEqual(await old.page.evaluate(() => window.shadelab.state.lights), [{ on: true, kind: 'point', color: [255, 240, 200], intensity: 1.4, position: [-2, 3, 1.5], direction: [-1, -1, -1], attenuation: [1, 0, 0] }]);
   assert.deepEqual([...problems, ...again.problems, ...old.problems], []);
   await Promise.all([page.close(), again.page.close(), old.page.close()]);
 });
