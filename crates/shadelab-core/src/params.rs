@@ -116,7 +116,8 @@ impl Param {
         };
         let (lo, hi) = (num(self.min), num(self.max));
         match self.kind {
-            Kind::Vec3 => format!("within ±{hi}{unit}"),
+            Kind::Vec3 if self.min == -self.max => format!("within ±{hi}{unit}"),
+            Kind::Vec3 => format!("each {lo}..={hi}{unit}"),
             Kind::Rgb => format!("each channel {lo}..={hi}"),
             Kind::Bool | Kind::Text => String::new(),
             Kind::Number | Kind::Integer => format!("{lo}..={hi}{unit}"),
@@ -195,8 +196,8 @@ impl Param {
     /// # Errors
     /// As [`Param::check`].
     pub fn check_vec3(&self, v: [f32; 3]) -> Result<[f32; 3], String> {
-        let hi = self.max as f32;
-        if v.iter().all(|c| c.is_finite() && c.abs() <= hi) {
+        let (lo, hi) = (self.min as f32, self.max as f32);
+        if v.iter().all(|c| c.is_finite() && (lo..=hi).contains(c)) {
             Ok(v)
         } else {
             Err(format!(
