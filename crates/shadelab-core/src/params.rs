@@ -103,7 +103,24 @@ pub struct Param {
     /// The key that must be set for this one to be (`render.palette_offset`
     /// needs `render.palette_shades`), or empty.
     pub needs: &'static str,
+    /// A short name for a control or a column ("Fall-off"), in English;
+    /// the page shows its translation when it has one.
+    pub label: &'static str,
+    /// The names of a colour's or a vector's three numbers ([`RGB`],
+    /// [`XYZ`], [`ATTENUATION_TERMS`]), for the controls of each; empty
+    /// for a single value.
+    pub parts: &'static [&'static str],
+    /// The command line's flag that sets it (without `--`), or empty when
+    /// it has none of its own (`render.width` is `--size`'s).
+    pub flag: &'static str,
 }
+
+/// The parts of a colour.
+pub const RGB: &[&str] = &["red", "green", "blue"];
+/// The parts of a position or a direction.
+pub const XYZ: &[&str] = &["x", "y", "z"];
+/// The parts of a light's attenuation, as `constant + linear·d + quadratic·d²`.
+pub const ATTENUATION_TERMS: &[&str] = &["constant", "linear", "quadratic"];
 
 impl Param {
     /// `min..=max` with the unit, as messages and help show it
@@ -305,30 +322,43 @@ fn table() -> Vec<Param> {
     vec![
         Param {
             default: Some(Value::Text("teapot")),
+            label: "Model",
             ..entry("model.source", Kind::Text, 0.0, 0.0, "",
                 "A built-in model's name or a mesh file (.obj, .stl, .ply, .gltf, .glb), relative to the scene file.")
         },
         Param {
             absent: "the model's own",
+            label: "Detail",
+            flag: "detail",
             ..entry("model.detail", Kind::Integer, 0.0, f64::from(max_detail), "",
                 "Tessellation level of a built-in model, within that model's own range.")
         },
         Param {
             absent: "the model's own (none for a file)",
+            label: "Crease angle",
+            flag: "crease-angle",
             ..entry("model.crease_angle", Kind::Number, 0.0, 180.0, "degrees",
                 "No smoothing of vertex normals across edges sharper than this.")
         },
         Param {
             default: white,
+            label: "Ambient colour",
+            parts: RGB,
+            flag: "ambient",
             ..entry("ambient.color", Kind::Rgb, 0.0, 255.0, "", "Colour of the ambient light.")
         },
         Param {
             default: number(0.2),
+            label: "Ambient intensity",
+            flag: "ambient-intensity",
             ..entry("ambient.intensity", Kind::Number, 0.0, 100.0, "",
                 "Intensity multiplying the ambient light's colour.")
         },
         Param {
             default: Some(Value::Three([2.0, 2.0, 3.0])),
+            label: "Position",
+            parts: XYZ,
+            flag: "light-pos",
             ..entry("lights.position", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
                 decimal(MAX_SCENE_COORDINATE), "",
                 "Where a point light is, in world coordinates (the default light's position).")
@@ -336,21 +366,31 @@ fn table() -> Vec<Param> {
         Param {
             absent: "required by a directional light",
             typical: Some(Value::Three([-1.0, -1.0, -1.0])),
+            label: "Direction",
+            parts: XYZ,
             ..entry("lights.direction", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
                 decimal(MAX_SCENE_COORDINATE), "",
                 "The direction a directional light's rays travel, not zero.")
         },
         Param {
             default: white,
+            label: "Colour",
+            parts: RGB,
+            flag: "light-color",
             ..entry("lights.color", Kind::Rgb, 0.0, 255.0, "", "Colour of a light.")
         },
         Param {
             default: number(1.0),
+            label: "Intensity",
+            flag: "light-intensity",
             ..entry("lights.intensity", Kind::Number, 0.0, 100.0, "",
                 "Intensity multiplying a light's colour.")
         },
         Param {
             default: Some(Value::Three(NO_ATTENUATION.map(f64::from))),
+            label: "Fall-off",
+            parts: ATTENUATION_TERMS,
+            flag: "light-attenuation",
             ..entry("lights.attenuation", Kind::Vec3, 0.0, 1e6, "",
                 "A point light's fall-off with distance d: its light is divided by \
                  constant + linear·d + quadratic·d² (the three numbers, as OpenGL's); \
@@ -358,48 +398,69 @@ fn table() -> Vec<Param> {
         },
         Param {
             default: rgb(Rgb8::from_rgb(material.ka)),
+            label: "Ka",
+            parts: RGB,
+            flag: "ka",
             ..entry("material.ka", Kind::Rgb, 0.0, 255.0, "", "Ambient reflectance Ka.")
         },
         Param {
             default: rgb(Rgb8::from_rgb(material.kd)),
+            label: "Kd",
+            parts: RGB,
+            flag: "kd",
             ..entry("material.kd", Kind::Rgb, 0.0, 255.0, "", "Diffuse reflectance Kd.")
         },
         Param {
             default: rgb(Rgb8::from_rgb(material.ks)),
+            label: "Ks",
+            parts: RGB,
+            flag: "ks",
             ..entry("material.ks", Kind::Rgb, 0.0, 255.0, "", "Specular reflectance Ks.")
         },
         Param {
             default: number(decimal(material.shininess)),
+            label: "Shininess",
+            flag: "shininess",
             ..entry("material.shininess", Kind::Number, 0.0, 10000.0, "",
                 "Specular exponent: the larger, the smaller and sharper the highlight.")
         },
         Param {
             default: number(f64::from(options.width)),
+            label: "Width",
             ..entry("render.width", Kind::Integer, 1.0, f64::from(MAX_IMAGE_SIDE), "pixels",
                 "Width of the image.")
         },
         Param {
             default: number(f64::from(options.height)),
+            label: "Height",
             ..entry("render.height", Kind::Integer, 1.0, f64::from(MAX_IMAGE_SIDE), "pixels",
                 "Height of the image.")
         },
         Param {
             default: rgb(options.background),
+            label: "Background",
+            parts: RGB,
+            flag: "background",
             ..entry("render.background", Kind::Rgb, 0.0, 255.0, "", "Colour where nothing is drawn.")
         },
         Param {
             default: Some(Value::Bool(options.cull_backfaces)),
+            label: "Cull back faces",
             ..entry("render.cull_backfaces", Kind::Bool, 0.0, 0.0, "",
                 "Skip polygons facing away from the viewer (false: draw them lit from behind).")
         },
         Param {
             default: Some(Value::Bool(options.gouraud_specular)),
+            label: "Specular in Gouraud",
+            flag: "gouraud-specular",
             ..entry("render.gouraud_specular", Kind::Bool, 0.0, 0.0, "",
                 "Include the specular term in Gouraud shading's vertex lighting.")
         },
         Param {
             absent: "floating point",
             typical: number(8.0),
+            label: "Fixed-point bits",
+            flag: "fixed-point",
             ..entry("render.fixed_point_bits", Kind::Integer, f64::from(MIN_FRACTION_BITS),
                 f64::from(MAX_FRACTION_BITS), "bits",
                 "Step attributes in fixed point with this many fraction bits (scanline rasterizer).")
@@ -407,6 +468,8 @@ fn table() -> Vec<Param> {
         Param {
             absent: "true colour",
             typical: number(8.0),
+            label: "Palette shades",
+            flag: "palette",
             ..entry("render.palette_shades", Kind::Integer, f64::from(Palette::MIN_SHADES),
                 f64::from(Palette::ENTRIES), "shades",
                 "Draw with an indexed palette of this many shades of the material colour (scanline rasterizer).")
@@ -414,22 +477,30 @@ fn table() -> Vec<Param> {
         Param {
             default: number(0.0),
             needs: "render.palette_shades",
+            label: "Palette offset",
+            flag: "palette-offset",
             ..entry("render.palette_offset", Kind::Integer, 0.0,
                 f64::from(Palette::ENTRIES - Palette::MIN_SHADES), "",
                 "The palette entry of the darkest shade; offset + shades is at most 256.")
         },
         Param {
             default: number(0.0),
+            label: "Yaw",
+            flag: "yaw",
             ..entry("render.yaw", Kind::Number, -1e6, 1e6, "degrees",
                 "Orbit the camera about its up axis.")
         },
         Param {
             default: number(0.0),
+            label: "Pitch",
+            flag: "pitch",
             ..entry("render.pitch", Kind::Number, -180.0, 180.0, "degrees",
                 "Orbit the camera towards its up axis; the elevation stops at ±89 degrees.")
         },
         Param {
             default: number(1.0),
+            label: "Zoom",
+            flag: "zoom",
             ..entry("render.zoom", Kind::Number, decimal(MIN_ZOOM), decimal(MAX_ZOOM), "",
                 "Magnification: the field of view narrows to 2·atan(tan(fov_y/2)/zoom).")
         },
@@ -456,6 +527,9 @@ fn entry(
         unit,
         help,
         needs: "",
+        label: "",
+        parts: &[],
+        flag: "",
     }
 }
 
@@ -470,7 +544,7 @@ fn choice<T: Choice + Default>(key: &str) -> Json {
 }
 
 /// The schema of every parameter and choice, as the page reads it at start-up:
-/// `{"params": [{key, kind, default, absent, typical, min, max, unit, help, needs}],
+/// `{"params": [{key, kind, default, absent, typical, min, max, unit, help, needs, label, parts, flag}],
 /// "choices": [{key, what, default, values: [{name, help}]}]}`.
 pub fn schema() -> Json {
     let params = all()
@@ -487,6 +561,9 @@ pub fn schema() -> Json {
                 "unit": p.unit,
                 "help": p.help,
                 "needs": p.needs,
+                "label": p.label,
+                "parts": p.parts,
+                "flag": p.flag,
             })
         })
         .collect::<Vec<_>>();

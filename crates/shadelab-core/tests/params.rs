@@ -112,3 +112,21 @@ fn the_schema_round_trips_and_holds_every_key_and_choice() {
         .collect();
     assert_eq!(names, Shading::ALL.map(|s| json!(s.name())));
 }
+
+#[test]
+fn every_parameter_has_a_label_its_parts_and_a_flag_of_its_own() {
+    let mut flags = std::collections::HashSet::new();
+    for p in all() {
+        assert!(!p.label.is_empty(), "{} has no label", p.key);
+        let three = matches!(p.kind, Kind::Rgb | Kind::Vec3);
+        assert_eq!(p.parts.len(), if three { 3 } else { 0 }, "{}", p.key);
+        if !p.flag.is_empty() {
+            assert!(flags.insert(p.flag), "{} repeats --{}", p.key, p.flag);
+            assert!(
+                p.flag.bytes().all(|b| b.is_ascii_lowercase() || b == b'-'),
+                "--{}",
+                p.flag
+            );
+        }
+    }
+}
