@@ -37,7 +37,10 @@ pub fn run(args: &AccuracyArgs) -> Result<(), Failure> {
     let model = first.file.model.source.clone().unwrap_or_default();
     let rows = accuracy(&args.details, |detail| -> Result<_, Failure> {
         let overrides = SceneOverrides {
-            detail: Some(detail),
+            params: args
+                .overrides
+                .params
+                .with("model.detail", toml::Value::Integer(i64::from(detail))),
             ..args.overrides.clone()
         };
         let loaded = load(

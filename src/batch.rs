@@ -105,13 +105,15 @@ fn parse_modes_arg(s: &str) -> Result<Modes, String> {
 
 /// Runs `shadelab batch`.
 pub fn run(args: &BatchArgs) -> Result<(), Failure> {
-    if args.overrides.model.is_some() || args.overrides.detail.is_some() {
+    if args.overrides.model.is_some() || args.overrides.params.has("model.detail") {
         return Err(input_error(anyhow::anyhow!(
             "--model and --detail do not apply to batch: the meshes come from the manifest"
         )));
     }
     let mut settings = read_scene(args.scene.as_deref())?;
-    args.overrides.apply(&mut settings, args.scene.is_some());
+    args.overrides
+        .apply(&mut settings, args.scene.is_some())
+        .map_err(input_error)?;
     let config = BatchConfig {
         settings,
         views: args.views,

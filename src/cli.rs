@@ -5,12 +5,13 @@ use std::path::{Path, PathBuf};
 use clap::builder::TypedValueParser as _;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use shadelab_core::limits::{MAX_COST_RUNS, MAX_QUAD_SIZE, MIN_QUAD_SIZE};
-use shadelab_core::raster::scanline::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
 use shadelab_core::{
-    Choice, Interpolation, Palette, Polygons, Rasterizer, Shading, Specular, MAX_IMAGE_PIXELS,
+    Choice, Interpolation, Polygons, Rasterizer, Shading, Specular, MAX_IMAGE_PIXELS,
     MAX_IMAGE_SIDE,
 };
-use shadelab_io::{LightKindName, LightSection, NormalsChoice, SceneFile};
+use shadelab_io::{NormalsChoice, SceneFile};
+
+use crate::param_flags::ParamFlags;
 
 /// Flat, Gouraud and Phong shading on an exact CPU rasterizer.
 #[derive(Debug, Parser)]
@@ -341,72 +342,29 @@ pub struct CompareArgs {
     pub overlay: OverlayArgs,
 }
 
-/// Flags that override the scene file, key by key.
+/// Flags that override the scene file, key by key: the table's parameters
+/// ([`ParamFlags`]) and the choices and switches declared here.
 #[derive(Debug, Clone, Args, Default)]
 pub struct SceneOverrides {
     /// Built-in model name or mesh file (.obj, .stl, .ply, .gltf, .glb); `shadelab models` lists the built-ins.
     #[arg(long, value_parser = non_empty)]
     pub model: Option<String>,
-    /// Tessellation level of a built-in model.
-    #[arg(long, value_parser = whole::<u32, 0, { u32::MAX as u64 }>, allow_hyphen_values = true)]
-    pub detail: Option<u32>,
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, value_parser = parse_size, allow_hyphen_values = true)]
     pub size: Option<(u32, u32)>,
-    /// Ambient light colour, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
-    pub ambient: Option<[i64; 3]>,
-    /// Ambient light intensity.
-    #[arg(long, allow_negative_numbers = true)]
-    pub ambient_intensity: Option<f32>,
-    /// Position of the (first) light, X,Y,Z; makes it a point light.
-    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub light_pos: Option<[f32; 3]>,
-    /// Colour of the (first) light, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
-    pub light_color: Option<[i64; 3]>,
-    /// Intensity of the (first) light.
-    #[arg(long, allow_negative_numbers = true)]
-    pub light_intensity: Option<f32>,
-    /// Attenuation of the (first) light, CONSTANT,LINEAR,QUADRATIC.
-    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub light_attenuation: Option<[f32; 3]>,
-    /// Ambient reflectance Ka, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
-    pub ka: Option<[i64; 3]>,
-    /// Diffuse reflectance Kd, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
-    pub kd: Option<[i64; 3]>,
-    /// Specular reflectance Ks, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
-    pub ks: Option<[i64; 3]>,
-    /// Specular exponent.
-    #[arg(long, allow_negative_numbers = true)]
-    pub shininess: Option<f32>,
-    /// Orbit the camera about the up axis, degrees.
-    #[arg(long, allow_negative_numbers = true)]
-    pub yaw: Option<f32>,
-    /// Orbit the camera towards the up axis, degrees.
-    #[arg(long, allow_negative_numbers = true)]
-    pub pitch: Option<f32>,
+    /// Every parameter of the core's table that has a flag (`--ka`,
+    /// `--shininess`, `--light-pos`, ...).
+    #[command(flatten)]
+    pub params: ParamFlags,
     /// Vertex normals.
     #[arg(long, value_enum)]
     pub normals: Option<NormalsArg>,
-    /// No smoothing across edges sharper than this, degrees.
-    #[arg(long, allow_negative_numbers = true)]
-    pub crease_angle: Option<f32>,
     /// Attribute interpolation.
     #[arg(long, value_parser = choice::<Interpolation>())]
     pub interpolation: Option<Interpolation>,
     /// Draw back faces too (lit with reversed normals).
     #[arg(long)]
     pub no_cull: bool,
-    /// Include the specular term in Gouraud's vertex lighting.
-    #[arg(long)]
-    pub gouraud_specular: bool,
-    /// Background colour, R,G,B in 0–255.
-    #[arg(long, value_parser = parse_rgb, allow_hyphen_values = true)]
-    pub background: Option<[i64; 3]>,
     /// Which rasterizer draws: the tiled SIMD one (default) or the scanline reference.
     #[arg(long, value_parser = choice::<Rasterizer>())]
     pub rasterizer: Option<Rasterizer>,
@@ -416,15 +374,6 @@ pub struct SceneOverrides {
     /// The specular term: Phong's r·v or Blinn's n·h.
     #[arg(long, value_parser = choice::<Specular>())]
     pub specular: Option<Specular>,
-    /// Step attributes in fixed point with this many fraction bits (scanline rasterizer).
-    #[arg(long, value_name = "BITS", value_parser = whole::<u32, { MIN_FRACTION_BITS as u64 }, { MAX_FRACTION_BITS as u64 }>, allow_hyphen_values = true)]
-    pub fixed_point: Option<u32>,
-    /// Draw with an indexed palette of this many shades of the material colour (scanline rasterizer).
-    #[arg(long, value_name = "SHADES", value_parser = whole::<u32, { Palette::MIN_SHADES as u64 }, { Palette::ENTRIES as u64 }>, allow_hyphen_values = true)]
-    pub palette: Option<u32>,
-    /// The palette entry of the darkest shade.
-    #[arg(long, value_name = "ENTRY", requires = "palette", value_parser = whole::<u32, 0, { (Palette::ENTRIES - Palette::MIN_SHADES) as u64 }>, allow_hyphen_values = true)]
-    pub palette_offset: Option<u32>,
 }
 
 /// A flag that takes one of core's [`Choice`]s (`--shading`,
@@ -472,22 +421,6 @@ fn parse_numbers<const N: usize, T: std::str::FromStr>(
         .map_err(|_| unreachable!("length checked above"))
 }
 
-fn parse_rgb(s: &str) -> Result<[i64; 3], String> {
-    let c: [i64; 3] = parse_numbers(s, "integers")?;
-    if c.iter().any(|v| !(0..=255).contains(v)) {
-        return Err(format!("each channel must be 0..=255, got {s:?}"));
-    }
-    Ok(c)
-}
-
-fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
-    let v: [f32; 3] = parse_numbers(s, "numbers")?;
-    if v.iter().any(|c| !c.is_finite()) {
-        return Err(format!("coordinates must be finite, got {s:?}"));
-    }
-    Ok(v)
-}
-
 /// `WIDTHxHEIGHT`, each side 1..=[`MAX_IMAGE_SIDE`] and at most
 /// [`MAX_IMAGE_PIXELS`] in all.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -512,7 +445,14 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
 
 impl SceneOverrides {
     /// Writes every flag that was given into `scene`.
-    pub fn apply(&self, scene: &mut SceneFile, scene_given: bool) {
+    ///
+    /// # Errors
+    /// As [`ParamFlags::apply`].
+    pub fn apply(
+        &self,
+        scene: &mut SceneFile,
+        scene_given: bool,
+    ) -> Result<(), shadelab_io::SceneError> {
         if let Some(m) = &self.model {
             // A file named on the command line is relative to the working
             // directory, not to the scene file.
@@ -526,9 +466,11 @@ impl SceneOverrides {
             // A different model has different (or no) details.
             scene.model.detail = None;
         }
-        if self.detail.is_some() {
-            scene.model.detail = self.detail;
+        if let Some((w, h)) = self.size {
+            scene.render.width = Some(w);
+            scene.render.height = Some(h);
         }
+        self.params.apply(scene)?;
         if let Some(n) = self.normals {
             scene.model.normals = Some(match n {
                 NormalsArg::Auto => NormalsChoice::Auto,
@@ -538,73 +480,11 @@ impl SceneOverrides {
                 NormalsArg::Angle => NormalsChoice::Angle,
             });
         }
-        if self.crease_angle.is_some() {
-            scene.model.crease_angle = self.crease_angle;
-        }
-        if let Some((w, h)) = self.size {
-            scene.render.width = Some(w);
-            scene.render.height = Some(h);
-        }
-        if self.ambient.is_some() {
-            scene.ambient.color = self.ambient;
-        }
-        if self.ambient_intensity.is_some() {
-            scene.ambient.intensity = self.ambient_intensity;
-        }
-        if self.light_pos.is_some()
-            || self.light_color.is_some()
-            || self.light_intensity.is_some()
-            || self.light_attenuation.is_some()
-        {
-            let lights = scene.lights.get_or_insert_with(Vec::new);
-            if lights.is_empty() {
-                lights.push(LightSection::default_light());
-            }
-            let light = &mut lights[0];
-            if let Some(p) = self.light_pos {
-                light.kind = LightKindName::Point;
-                light.position = Some(p);
-                light.direction = None;
-            }
-            if self.light_color.is_some() {
-                light.color = self.light_color;
-            }
-            if self.light_intensity.is_some() {
-                light.intensity = self.light_intensity;
-            }
-            if self.light_attenuation.is_some() {
-                light.attenuation = self.light_attenuation;
-            }
-        }
-        if self.ka.is_some() {
-            scene.material.ka = self.ka;
-        }
-        if self.kd.is_some() {
-            scene.material.kd = self.kd;
-        }
-        if self.ks.is_some() {
-            scene.material.ks = self.ks;
-        }
-        if self.shininess.is_some() {
-            scene.material.shininess = self.shininess;
-        }
-        if self.yaw.is_some() {
-            scene.render.yaw = self.yaw;
-        }
-        if self.pitch.is_some() {
-            scene.render.pitch = self.pitch;
-        }
         if self.interpolation.is_some() {
             scene.render.interpolation = self.interpolation;
         }
         if self.no_cull {
             scene.render.cull_backfaces = Some(false);
-        }
-        if self.gouraud_specular {
-            scene.render.gouraud_specular = Some(true);
-        }
-        if self.background.is_some() {
-            scene.render.background = self.background;
         }
         if self.rasterizer.is_some() {
             scene.render.rasterizer = self.rasterizer;
@@ -615,12 +495,6 @@ impl SceneOverrides {
         if self.specular.is_some() {
             scene.render.specular = self.specular;
         }
-        if self.fixed_point.is_some() {
-            scene.render.fixed_point_bits = self.fixed_point;
-        }
-        if self.palette.is_some() {
-            scene.render.palette_shades = self.palette;
-            scene.render.palette_offset = self.palette_offset;
-        }
+        Ok(())
     }
 }

@@ -40,7 +40,9 @@ pub fn run(args: &CompareArgs) -> Result<(), Failure> {
         file.render.width = Some(480);
         file.render.height = Some(480);
     }
-    args.overrides.apply(&mut file, scene_path.is_some());
+    args.overrides
+        .apply(&mut file, scene_path.is_some())
+        .map_err(input_error)?;
     let texts = Texts::new(args.lang.into());
     if let Some(frames) = args.orbit {
         check_orbit(frames, args.delay, &args.output)?;

@@ -43,7 +43,9 @@ pub fn load(
             file.model.source = Some(model.to_owned());
         }
     }
-    overrides.apply(&mut file, scene_path.is_some());
+    overrides
+        .apply(&mut file, scene_path.is_some())
+        .map_err(input_error)?;
     let (scene, options, inputs) = resolve(&file, scene_path)?;
     Ok(Loaded {
         file,

@@ -28,6 +28,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::Context;
+use clap::Parser as _;
 use shadelab_core::limits::{MAX_THREADS, RENDER_BYTES_PER_PIXEL};
 use shadelab_core::{
     escape_message, escape_token, render, Image, RenderOptions, RenderStats, Scene, Shading,
@@ -59,7 +60,7 @@ fn output_error(error: impl Into<anyhow::Error>) -> Failure {
 }
 
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse_with_params() {
+    let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {
             // The arguments are repeated in clap's message: escaped like
@@ -156,7 +157,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::Render(args) => {
             let mut file = read_scene(args.scene.as_deref())?;
-            args.overrides.apply(&mut file, args.scene.is_some());
+            args.overrides
+                .apply(&mut file, args.scene.is_some())
+                .map_err(input_error)?;
             if let Some(s) = args.shading {
                 file.render.shading = Some(s);
             }

@@ -185,7 +185,10 @@ fn negative_numbers_are_told_the_range_allowed() {
     let dir = tempfile::tempdir().unwrap();
     for (args, range) in [
         (vec!["render", "-o", "o.png", "--size", "-5x5"], "1..=16384"),
-        (vec!["render", "-o", "o.png", "--detail", "-3"], "≥ 0"),
+        (
+            vec!["render", "-o", "o.png", "--detail", "-3"],
+            "model.detail must be 0..=1024",
+        ),
         (
             vec!["render", "-o", "o.png", "--ambient", "-1,0,0"],
             "0..=255",

@@ -463,3 +463,106 @@ fn light_attenuation_from_the_flag_or_the_scene_file() {
         stderr(&out)
     );
 }
+
+/// A value of `p` other than its default, within its range, as a flag's
+/// text and as the scene file's TOML.
+fn another_value(p: &shadelab_core::params::Param) -> (String, String) {
+    use shadelab_core::params::{Kind, Value};
+    let near = |d: f64, step: f64| {
+        if d + step <= p.max {
+            d + step
+        } else {
+            (d + p.min) / 2.0
+        }
+    };
+    match (p.kind, p.default.or(p.typical)) {
+        (Kind::Bool, Some(Value::Bool(b))) => (String::new(), (!b).to_string()),
+        (Kind::Number, Some(Value::Number(d))) => {
+            let v = near(d, 0.5);
+            (v.to_string(), format!("{v:?}"))
+        }
+        (Kind::Number, None) => {
+            let v = p.min + (p.max - p.min) / 32.0;
+            (v.to_string(), format!("{v:?}"))
+        }
+        (Kind::Integer, Some(Value::Number(d))) => {
+            let v = near(d, 2.0) as i64;
+            (v.to_string(), v.to_string())
+        }
+        (Kind::Rgb, _) => ("10,200,90".into(), "[10, 200, 90]".into()),
+        (Kind::Vec3, Some(Value::Three(d))) => {
+            let v = [near(d[0], 0.5), near(d[1], 0.25), near(d[2], 0.125)];
+            (
+                v.map(|c| c.to_string()).join(","),
+                format!("[{:?}, {:?}, {:?}]", v[0], v[1], v[2]),
+            )
+        }
+        other => panic!("{}: no value to try for {other:?}", p.key),
+    }
+}
+
+#[test]
+fn every_parameter_flag_sets_what_its_scene_file_key_sets() {
+    let dir = tempfile::tempdir().unwrap();
+    let base =
+        "[model]\nsource = \"torus\"\n[render]\nwidth = 40\nheight = 30\nshading = \"phong\"\n";
+    write(dir.path(), "base.toml", base);
+    assert_ok(&run(dir.path(), &["render", "base.toml", "-o", "base.png"]));
+    let plain = Png::read(&dir.path().join("base.png"));
+    let mut tried = 0;
+    for p in shadelab_core::params::all() {
+        // The detail's range is each model's own (tests/input_errors.rs).
+        if p.flag.is_empty() || p.key == "model.detail" {
+            continue;
+        }
+        let (flag_value, toml_value) = another_value(p);
+        let (section, key) = p.key.split_once('.').unwrap();
+        let mut model = String::from("[model]\nsource = \"torus\"\n");
+        let mut render = String::from("[render]\nwidth = 40\nheight = 30\nshading = \"phong\"\n");
+        let mut other = String::new();
+        let mut args = vec!["render".to_owned(), "base.toml".to_owned()];
+        // A key that needs another (the palette's offset) is tried with it.
+        if !p.needs.is_empty() {
+            let needed = shadelab_core::params::get(p.needs);
+            let (_, needed_key) = needed.key.split_once('.').unwrap();
+            render.push_str(&format!("{needed_key} = 8\n"));
+            args.extend([format!("--{}", needed.flag), "8".to_owned()]);
+        }
+        let line = format!("{key} = {toml_value}\n");
+        match section {
+            "model" => model.push_str(&line),
+            "render" => render.push_str(&line),
+            "lights" if key == "position" => {
+                other.push_str(&format!("[[lights]]\nkind = \"point\"\n{line}"));
+            }
+            "lights" => other.push_str(&format!(
+                "[[lights]]\nkind = \"point\"\nposition = [2.0, 2.0, 3.0]\n{line}"
+            )),
+            _ => other.push_str(&format!("[{section}]\n{line}")),
+        }
+        let scene = format!("{model}{render}{other}");
+        write(dir.path(), "scene.toml", &scene);
+        args.push(format!("--{}", p.flag));
+        if !flag_value.is_empty() {
+            args.push(flag_value.clone());
+        }
+        args.extend(["-o".to_owned(), "flag.png".to_owned()]);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        assert_ok(&run(dir.path(), &args));
+        assert_ok(&run(
+            dir.path(),
+            &["render", "scene.toml", "-o", "file.png"],
+        ));
+        let (flag, file) = (
+            Png::read(&dir.path().join("flag.png")),
+            Png::read(&dir.path().join("file.png")),
+        );
+        assert_eq!(flag, file, "--{} {flag_value} against {}", p.flag, p.key);
+        // Gouraud's specular acts in Gouraud shading only.
+        if p.key != "render.gouraud_specular" {
+            assert_ne!(flag, plain, "--{} {flag_value} changed nothing", p.flag);
+        }
+        tried += 1;
+    }
+    assert!(tried >= 18, "{tried}");
+}

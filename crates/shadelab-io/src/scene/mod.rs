@@ -21,7 +21,7 @@ pub use resolve::model_path;
 
 use std::path::Path;
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use shadelab_core::limits::MAX_SCENE_BYTES;
 use shadelab_core::{Interpolation, Polygons, Rasterizer, Shading, Specular};
 
@@ -29,7 +29,7 @@ use crate::input::{read_capped, unify_line_ends};
 use crate::LoadError;
 
 /// A scene file as written: every key optional.
-#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
     /// `[model]`
@@ -51,7 +51,7 @@ pub struct SceneFile {
 }
 
 /// `[model]`
-#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ModelSection {
     /// A built-in model's name or a path to a mesh file (.obj, .stl, .ply, .gltf, .glb), relative to the scene file.
@@ -65,7 +65,7 @@ pub struct ModelSection {
 }
 
 /// Where vertex normals come from.
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum NormalsChoice {
     /// The file's normals when it has them, else uniform.
@@ -82,7 +82,7 @@ pub enum NormalsChoice {
 }
 
 /// `[camera]`
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSection {
     /// The viewer's position.
@@ -146,7 +146,7 @@ fn default_far() -> f32 {
 }
 
 /// `[ambient]`
-#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct AmbientSection {
     /// RGB 0–255; default white.
@@ -157,7 +157,7 @@ pub struct AmbientSection {
 }
 
 /// The kind of a light.
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum LightKindName {
     /// At a position.
@@ -167,7 +167,7 @@ pub enum LightKindName {
 }
 
 /// `[[lights]]`
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct LightSection {
     /// point | directional
@@ -190,7 +190,7 @@ pub struct LightSection {
 }
 
 /// `[material]`
-#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSection {
     /// Ambient reflectance, RGB 0–255.
@@ -207,7 +207,7 @@ pub struct MaterialSection {
 }
 
 /// `[render]`
-#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct RenderSection {
     /// Pixels; default 800.
@@ -358,6 +358,46 @@ impl SceneFile {
             ),
         })?;
         Ok(text)
+    }
+
+    /// Sets the scene-file key `key` (`material.ks`; a light's, as
+    /// `lights.position`, is the first light's, made when there is none) to
+    /// `value`, or removes it (`None`), as if the file had said so. The
+    /// command line's flags write themselves here, by the key the table of
+    /// parameters gives them ([`shadelab_core::params`]).
+    ///
+    /// # Errors
+    /// [`SceneError::Value`] naming `key` when it is not `section.key` of
+    /// the format or `value` is not of its type.
+    pub fn set(&mut self, key: &str, value: Option<toml::Value>) -> Result<(), SceneError> {
+        let bad = |message: String| value_error(key, message);
+        let (section, field) = key
+            .split_once('.')
+            .ok_or_else(|| bad("not a key of the form section.key".to_owned()))?;
+        let mut document = toml::Table::try_from(&*self).map_err(|e| bad(e.to_string()))?;
+        let slot = document.entry(section).or_insert_with(|| match section {
+            "lights" => toml::Value::Array(Vec::new()),
+            _ => toml::Value::Table(toml::Table::new()),
+        });
+        let table = match slot {
+            toml::Value::Array(lights) => {
+                if lights.is_empty() {
+                    let light = toml::Value::try_from(LightSection::default_light())
+                        .map_err(|e| bad(e.to_string()))?;
+                    lights.push(light);
+                }
+                lights[0].as_table_mut()
+            }
+            other => other.as_table_mut(),
+        }
+        .ok_or_else(|| bad(format!("[{section}] is not a section")))?;
+        match value {
+            Some(v) => table.insert(field.to_owned(), v),
+            None => table.remove(field),
+        };
+        *self = SceneFile::deserialize(toml::Value::Table(document))
+            .map_err(|e| bad(e.message().to_owned()))?;
+        Ok(())
     }
 
     /// Parses scene TOML; `name` is used in error messages. Lines may end
