@@ -404,6 +404,21 @@ test("a point light's attenuation dims all three panels, from its slider to the 
   await Promise.all([page.close(), second.page.close(), third.page.close()]);
 });
 
+test('a link with a negative fall-off term is refused: the light keeps its default and the page says so', async () => {
+  for (const [hash, key] of [
+    ['#lightAtt=1,-0.5,0', 'lightAtt'],
+    ['#lights=point:2,2,3:255,255,255:1:1,0,-0.1;directional:0,0,-1:255,255,255:1', 'lights'],
+  ]) {
+    const { page, problems } = await openViewer(hash);
+    await page.locator('#message').waitFor({ state: 'visible' });
+    assert.equal(await page.locator('#message .message-text').textContent(), `The link’s value for “${key}” is not valid and was ignored.`);
+    assert.deepEqual(await page.evaluate(() => window.shadelab.state.lights.map((l) => [l.kind, l.attenuation])), [['point', [1, 0, 0]]]);
+    assert.match(await page.evaluate(() => window.shadelab.sceneToml()), /\nattenuation = \[1\.0, 0\.0, 0\.0\]\n/);
+    assert.deepEqual(problems, []);
+    await page.close();
+  }
+});
+
 test('a link with the state reproduces the view', async () => {
   const { page, problems } = await openViewer();
   await update(page, `

@@ -9,8 +9,8 @@
 // and writing (state.js) and the controls (form.js) are derived from this.
 //
 // Kinds: 'number' (float), 'int', 'choice' (one of `choices`), 'bool',
-// 'rgb' (three integers within `min`..`max`), 'vec3' (three numbers within
-// ±`max`). `min`/`max` are the values accepted (from a number box or a
+// 'rgb' (three integers within `min`..`max`), 'vec3' (three numbers, each
+// within `min`..`max`). `min`/`max` are the values accepted (from a number box or a
 // link); `slider` is the span of the slider when it is narrower.
 // `nullable`: null is a value (the model's own, or the mode off); `on` is
 // the value a mode starts from when it is switched on. A parameter of group
@@ -151,7 +151,7 @@ export function valid(p, value) {
     case 'rgb':
       return Array.isArray(value) && value.length === 3 && value.every((v) => Number.isInteger(v) && v >= p.min && v <= p.max);
     case 'vec3':
-      return Array.isArray(value) && value.length === 3 && value.every((v) => Number.isFinite(v) && Math.abs(v) <= p.max);
+      return Array.isArray(value) && value.length === 3 && value.every((v) => Number.isFinite(v) && v >= p.min && v <= p.max);
     default:
       return typeof value === 'string' && value.length > 0;
   }
