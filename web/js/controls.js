@@ -159,7 +159,7 @@ export class Controls {
     const rgbEl = el('div', { class: 'rgb' });
     boxes.forEach((b, i) => rgbEl.append(el('span', { 'aria-hidden': 'true', class: 'hint', text: t(letters[i]) }), b));
     rgbEl.append(picker);
-    parent.append(el('div', { class: 'row rgb-row' }, [el('label', { for: id, text: label }), rgbEl]));
+    parent.append(el('div', { class: 'row rgb-row', 'data-control': name }, [el('label', { for: id, text: label }), rgbEl]));
   }
 
   /** Three number boxes (x, y, z). */
@@ -201,7 +201,7 @@ export class Controls {
     };
     this.refreshers.push(sync);
     sync();
-    parent.append(el('div', { class: 'row check' }, [box, el('label', { for: id, text: label })]));
+    parent.append(el('div', { class: 'row check', 'data-control': name }, [box, el('label', { for: id, text: label })]));
     return box;
   }
 

@@ -51,6 +51,15 @@ export function t(key, values = {}) {
   return fill(text, values);
 }
 
+/**
+ * The string for `key`, or undefined when no table has it: a parameter's
+ * label then comes from the core's table (form.js: labelOf).
+ */
+export function translation(key, values = {}) {
+  const text = table[key] ?? en[key];
+  return text === undefined ? undefined : fill(text, values);
+}
+
 /** The instruments' text `id` (shadelab-lab's texts/*.toml), filled like `t`. */
 export function lab(id, values = {}) {
   const text = labTexts[id];

@@ -2,23 +2,30 @@
 // page's state), the key that carries it in a link, the group of controls
 // it belongs to, and how its control shows it (the span its slider covers,
 // its step, the digits a link keeps). A parameter of the scene names its
-// scene-file `key`: its kind, default, valid range, unit, help and choices
-// come from the core's table of parameters, which the server hands out as
-// `params.json` and this module reads before any other module of the page
-// runs (shadelab_core::params). The state's defaults and the link's reading
-// and writing (state.js) and the controls (form.js) are derived from this.
+// scene-file `key`: its kind, default, valid range, unit, help, English
+// label, the names of its three parts and its choices come from the core's
+// table of parameters, which the server hands out as `params.json` and this
+// module reads before any other module of the page runs
+// (shadelab_core::params). The state's defaults, the link's reading and
+// writing and the scene file (state.js) and the controls with their labels
+// (form.js) are derived from this: a new ordinary parameter is one line
+// here.
 //
 // Kinds: 'number' (float), 'int', 'choice' (one of `choices`), 'bool',
-// 'rgb' (three integers within `min`..`max`), 'vec3' (three numbers within
-// ±`max`). `min`/`max` are the values accepted (from a number box or a
-// link); `slider` is the span of the slider when it is narrower.
-// `nullable`: null is a value (the model's own, or the mode off); `on` is
-// the value a mode starts from when it is switched on. A parameter of group
-// 'light' belongs to each light of the `lights` list. The page's own
-// parameters (the panel size, the instruments, the animation), which no
-// scene file has, are declared here whole.
+// 'rgb' (three integers within `min`..`max`), 'vec3' (three numbers, each
+// within `min`..`max`, named by `parts`). `min`/`max` are the values
+// accepted (from a number box or a link); `slider` is the span of the
+// slider when it is narrower. `nullable`: null is a value (the model's own,
+// or the mode off); `on` is the value a mode starts from when it is
+// switched on. `control`: the name of its control when it is not the
+// parameter's name within its group (form.js: controlName). A parameter of
+// group 'light' belongs to each light of the `lights` list; `when(light)`
+// says which lights have it (a point light's position, a directional
+// light's direction). The page's own parameters (the panel size, the
+// instruments, the animation), which no scene file has, are declared here
+// whole.
 
-/** The core's schema: {params: [{key, kind, default, typical, min, max, unit, help}], choices: [{key, default, values}]}. */
+/** The core's schema: {params: [{key, kind, default, typical, min, max, unit, help, label, parts}], choices: [{key, what, default, values}]}. */
 const SCHEMA = await fetch(new URL('../params.json', import.meta.url)).then((response) => {
   if (!response.ok) throw new Error(`params.json: ${response.status} ${response.statusText}`);
   return response.json();
@@ -32,13 +39,23 @@ export const MAX_LIGHTS = 8;
 
 const KINDS = { number: 'number', integer: 'int', rgb: 'rgb', vec3: 'vec3', bool: 'bool' };
 
-/** `p` completed from the schema's entry for its scene-file key. */
+/**
+ * `p` completed from the schema's entry for its scene-file key. `order` is
+ * the entry's place in the core's table, the order the scene file and a
+ * light's link fields follow; `label` is its English label (a choice's:
+ * what it chooses).
+ */
 function fromSchema(p) {
   if (!p.key) return p;
-  const choice = SCHEMA.choices.find((c) => c.key === p.key);
-  if (choice) return { ...p, kind: 'choice', choices: choice.values.map((v) => v.name), default: choice.default };
-  const s = SCHEMA.params.find((q) => q.key === p.key);
-  if (!s) throw new Error(`params.json has no ${p.key}`);
+  const c = SCHEMA.choices.findIndex((q) => q.key === p.key);
+  if (c >= 0) {
+    const choice = SCHEMA.choices[c];
+    const label = choice.what.charAt(0).toUpperCase() + choice.what.slice(1);
+    return { ...p, kind: 'choice', choices: choice.values.map((v) => v.name), default: choice.default, label, parts: [], order: SCHEMA.params.length + c };
+  }
+  const i = SCHEMA.params.findIndex((q) => q.key === p.key);
+  if (i < 0) throw new Error(`params.json has no ${p.key}`);
+  const s = SCHEMA.params[i];
   const typical = s.typical ?? undefined;
   return {
     ...p,
@@ -49,25 +66,39 @@ function fromSchema(p) {
     max: s.max,
     unit: s.unit,
     help: s.help,
+    label: s.label,
+    parts: s.parts,
+    order: i,
   };
 }
+
+/** A point light's parameters, and a directional light's. */
+const point = (light) => light.kind === 'point';
+const directional = (light) => light.kind === 'directional';
 
 export const PARAMS = [
   // The model: its name, its tessellation (each model has its own range within the one given).
   { name: 'model', key: 'model.source', link: 'model', group: 'model', kind: 'model' },
   { name: 'detail', key: 'model.detail', link: 'detail', group: 'model', nullable: true, step: 1 },
 
-  { name: 'ambient.color', key: 'ambient.color', link: 'ambient', group: 'ambient' },
-  { name: 'ambient.intensity', key: 'ambient.intensity', link: 'ambientI', group: 'ambient', slider: [0, 2], step: 0.01 },
+  { name: 'ambient.color', key: 'ambient.color', link: 'ambient', group: 'ambient', control: 'ambient-color' },
+  { name: 'ambient.intensity', key: 'ambient.intensity', link: 'ambientI', group: 'ambient', control: 'ambient-intensity', slider: [0, 2], step: 0.01 },
 
   // Each light of the list (group 'light'); the list itself is `lights`.
+  // `inEveryLink`: a field every `lights=` link has (those it had before
+  // attenuation); the others follow in the order declared here, left out
+  // at their defaults: a new light parameter goes last (state.js:
+  // LIGHT_FIELDS). A vector's sliders are named by its parts alone
+  // (light-1-x).
   { name: 'on', link: 'on', group: 'light', kind: 'bool', default: true },
   { name: 'kind', link: 'kind', group: 'light', kind: 'choice', choices: ['point', 'directional'], default: 'point' },
-  { name: 'color', key: 'lights.color', link: 'light', group: 'light' },
-  { name: 'intensity', key: 'lights.intensity', link: 'lightI', group: 'light', slider: [0, 3], step: 0.01 },
-  { name: 'position', key: 'lights.position', link: 'lightPos', group: 'light', slider: [-10, 10], step: 0.05 },
-  { name: 'direction', key: 'lights.direction', link: 'lightDir', group: 'light', slider: [-1, 1], step: 0.01 },
-  { name: 'attenuation', key: 'lights.attenuation', link: 'lightAtt', group: 'light', slider: [0, 1], step: 0.01 },
+  { name: 'color', key: 'lights.color', link: 'light', group: 'light', inEveryLink: true },
+  { name: 'intensity', key: 'lights.intensity', link: 'lightI', group: 'light', inEveryLink: true, slider: [0, 3], step: 0.01 },
+  { name: 'position', key: 'lights.position', link: 'lightPos', group: 'light', when: point, inEveryLink: true, control: '', slider: [-10, 10], step: 0.05 },
+  // A direction of zero has no meaning (`nonzero`).
+  { name: 'direction', key: 'lights.direction', link: 'lightDir', group: 'light', when: directional, inEveryLink: true, control: '', nonzero: true, slider: [-1, 1], step: 0.01 },
+  // A point light's fall-off with distance: k0 + k1·d + k2·d² divides its light.
+  { name: 'attenuation', key: 'lights.attenuation', link: 'lightAtt', group: 'light', when: point, slider: [0, 1], step: 0.01 },
 
   { name: 'material.ka', key: 'material.ka', link: 'ka', group: 'material' },
   { name: 'material.kd', key: 'material.kd', link: 'kd', group: 'material' },
@@ -101,8 +132,8 @@ export const PARAMS = [
   { name: 'quadAngle', link: 'quadAngle', group: 'instruments', kind: 'number', default: 30, min: -360, max: 360, slider: [0, 90], step: 1, digits: 1 },
 
   // What the animation saves (not part of the scene, not in the link).
-  { name: 'animation.frames', group: 'animation', kind: 'int', default: 36, min: 4, max: 360, step: 1 },
-  { name: 'animation.delay', group: 'animation', kind: 'int', default: 80, min: 10, max: 1000, step: 10 },
+  { name: 'animation.frames', group: 'animation', control: 'animation-frames', kind: 'int', default: 36, min: 4, max: 360, step: 1 },
+  { name: 'animation.delay', group: 'animation', control: 'animation-delay', kind: 'int', default: 80, min: 10, max: 1000, step: 10 },
 ].map(fromSchema);
 
 /** The parameter named `name` (for a light's, group 'light'). */
@@ -110,6 +141,11 @@ export function param(name, group) {
   const p = PARAMS.find((q) => q.name === name && (group === undefined ? q.group !== 'light' : q.group === group));
   if (!p) throw new Error(`no parameter ${name}`);
   return p;
+}
+
+/** Whether light `light` has parameter `p` of group 'light' (its `when`). */
+export function applies(p, light) {
+  return !p.when || p.when(light);
 }
 
 /** A light with every default. */
@@ -151,7 +187,8 @@ export function valid(p, value) {
     case 'rgb':
       return Array.isArray(value) && value.length === 3 && value.every((v) => Number.isInteger(v) && v >= p.min && v <= p.max);
     case 'vec3':
-      return Array.isArray(value) && value.length === 3 && value.every((v) => Number.isFinite(v) && Math.abs(v) <= p.max);
+      return Array.isArray(value) && value.length === 3 && value.every((v) => Number.isFinite(v) && v >= p.min && v <= p.max)
+        && !(p.nonzero && value.every((v) => v === 0));
     default:
       return typeof value === 'string' && value.length > 0;
   }

@@ -8,6 +8,7 @@ import { t } from './i18n.js';
 import { el } from './dom.js';
 import { Controls } from './controls.js';
 import { param } from './params.js';
+import { paramControl } from './form.js';
 
 export class Present {
   /** `page`: state(), models(), modelName(name), dragMode get/set, changed(), visiblePanels(). */
@@ -41,23 +42,10 @@ export class Present {
       options: () => ['camera', 'light'].map((v) => [v, t(`camera.drag.${v}`)]),
       get: () => page.dragMode(), set: (v) => page.setDragMode(v),
     });
-    const shininess = param('material.shininess');
-    c.range(this.bar, {
-      name: 'present-shininess', label: t('material.shininess'),
-      min: shininess.slider[0], max: shininess.slider[1], step: shininess.step, accept: [shininess.min, shininess.max],
-      get: () => s().material.shininess, set: (v) => (s().material.shininess = v),
-    });
-    c.checkbox(this.bar, { name: 'present-gouraud-specular', label: t('shading.gouraudSpecular'), get: () => s().gouraudSpecular, set: (v) => (s().gouraudSpecular = v) });
-    c.select(this.bar, {
-      name: 'present-specular', label: t('shading.specular'),
-      options: () => param('specular').choices.map((v) => [v, t(`shading.specular.${v}`)]),
-      get: () => s().specular, set: (v) => (s().specular = v),
-    });
-    c.select(this.bar, {
-      name: 'present-interpolation', label: t('shading.interpolation'),
-      options: () => param('interpolation').choices.map((v) => [v, t(`shading.interpolation.${v}`)]),
-      get: () => s().interpolation, set: (v) => (s().interpolation = v),
-    });
+    // The shading options, as the column has them (form.js).
+    for (const name of ['material.shininess', 'gouraudSpecular', 'specular', 'interpolation']) {
+      paramControl(c, this.bar, param(name), { of: s, prefix: 'present' });
+    }
     const done = el('button', { type: 'button', class: 'present-exit', text: t('present.exit') });
     done.addEventListener('click', () => this.toggle(false));
     this.bar.append(done);

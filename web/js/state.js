@@ -3,7 +3,7 @@
 // the scene file (TOML) every panel renders, which is exactly what
 // `shadelab render` / `shadelab compare` read.
 
-import { PARAMS, MAX_LIGHTS, param, defaultLight, getPath, setPath, valid, formatLink, parseLink } from './params.js';
+import { PARAMS, MAX_LIGHTS, param, applies, defaultLight, getPath, setPath, valid, formatLink, parseLink } from './params.js';
 
 export { MAX_LIGHTS, defaultLight };
 export const METHODS = ['flat', 'gouraud', 'phong'];
@@ -28,6 +28,16 @@ export const PRESETS = {
 
 /** The parameters kept as they are in the state and the link (the rest have their own code below). */
 const PLAIN = PARAMS.filter((p) => p.link && p.group !== 'light' && p.group !== 'animation' && !p.name.startsWith('palette.') && p.name !== 'model');
+
+/** A light's parameters of the scene (group 'light' with a scene-file key), in the page's order. */
+const LIGHT = PARAMS.filter((p) => p.group === 'light' && p.key);
+/**
+ * A light's fields in a `lights=` link: those every such link has
+ * (`inEveryLink`) in the core's table's order, then those added since in
+ * the page's order, so that a parameter declared last in params.js comes
+ * last in the link and older links keep their meaning.
+ */
+const LIGHT_FIELDS = [...LIGHT.filter((p) => p.inEveryLink).sort((a, b) => a.order - b.order), ...LIGHT.filter((p) => !p.inEveryLink)];
 
 /** A fresh state with every default (params.js). */
 export function defaultState() {
@@ -107,6 +117,43 @@ function vec3(v) {
   return `[${v.map(float).join(', ')}]`;
 }
 
+/** Parameter `p`'s line in the scene file: its key in its table, and `value` as its kind is written. */
+function line(p, value) {
+  const key = p.key.slice(p.key.indexOf('.') + 1);
+  switch (p.kind) {
+    case 'number':
+      return `${key} = ${float(value)}`;
+    case 'int':
+      return `${key} = ${Math.round(value)}`;
+    case 'rgb':
+      return `${key} = ${rgb(value)}`;
+    case 'vec3':
+      return `${key} = ${vec3(value)}`;
+    case 'bool':
+      return `${key} = ${value}`;
+    default:
+      return `${key} = ${tomlString(value)}`;
+  }
+}
+
+/**
+ * The lines of table `table` ('material') that `lines`, its lines written
+ * by hand, do not set (read from them): each parameter of the table that
+ * `object` (the state, a light) has and that is not null, in the core's
+ * table's order. A light has those its kind has (`when`). So a new
+ * parameter has its line with no code of its own.
+ */
+function rest(table, object, lines = []) {
+  const written = new Set(lines.map((l) => l.split(' = ')[0]));
+  return PARAMS
+    .filter((p) => p.key?.startsWith(`${table}.`) && applies(p, object) && !written.has(p.key.slice(table.length + 1)))
+    .sort((a, b) => a.order - b.order)
+    .flatMap((p) => {
+      const value = getPath(object, p.name);
+      return value === null || value === undefined ? [] : [line(p, value)];
+    });
+}
+
 /** A TOML basic string. JSON's escapes are TOML's, but for DEL. */
 export function tomlString(s) {
   return JSON.stringify(s).replace(/\x7f/g, '\\u007f');
@@ -120,41 +167,22 @@ export function sceneToml(state, method) {
   const on = state.lights.filter((l) => l.on);
   // With every light off, an empty list: no [[lights]] at all would mean the default light.
   const lines = on.length ? [] : ['lights = []', ''];
-  lines.push('[model]', `source = ${tomlString(state.model)}`);
-  if (state.detail !== null) lines.push(`detail = ${Math.round(state.detail)}`);
-  lines.push(`normals = "${state.normals}"`);
-  if (state.crease !== null) lines.push(`crease_angle = ${float(state.crease)}`);
-  lines.push(
-    '',
-    '[ambient]',
-    `color = ${rgb(state.ambient.color)}`,
-    `intensity = ${float(state.ambient.intensity)}`,
-    '',
-  );
+  // The model by hand: its normals, which the page chooses and the table has not, sit among the table's keys.
+  const model = [`source = ${tomlString(state.model)}`];
+  if (state.detail !== null) model.push(`detail = ${Math.round(state.detail)}`);
+  model.push(`normals = "${state.normals}"`);
+  if (state.crease !== null) model.push(`crease_angle = ${float(state.crease)}`);
+  lines.push('[model]', ...model, ...rest('model', state, model), '');
+  lines.push('[ambient]', ...rest('ambient', state), '');
   for (const l of on) {
-    lines.push(
-      '[[lights]]',
-      `kind = "${l.kind}"`,
-      l.kind === 'point' ? `position = ${vec3(l.position)}` : `direction = ${vec3(l.direction)}`,
-      `color = ${rgb(l.color)}`,
-      `intensity = ${float(l.intensity)}`,
-      ...(l.kind === 'point' ? [`attenuation = ${vec3(l.attenuation)}`] : []),
-      '',
-    );
+    const kind = [`kind = "${l.kind}"`];
+    lines.push('[[lights]]', ...kind, ...rest('lights', l, kind), '');
   }
-  lines.push(
-    '[material]',
-    `ka = ${rgb(state.material.ka)}`,
-    `kd = ${rgb(state.material.kd)}`,
-    `ks = ${rgb(state.material.ks)}`,
-    `shininess = ${float(state.material.shininess)}`,
-    '',
-    '[render]',
-    `width = ${state.size}`,
-    `height = ${state.size}`,
-  );
-  if (method) lines.push(`shading = "${method}"`);
-  lines.push(
+  lines.push('[material]', ...rest('material', state), '');
+  // The panel's size, its method, the rasterizer that draws and the palette are the page's own: by hand.
+  const render = [`width = ${state.size}`, `height = ${state.size}`];
+  if (method) render.push(`shading = "${method}"`);
+  render.push(
     `background = ${rgb(state.background)}`,
     `cull_backfaces = ${state.cull}`,
     `gouraud_specular = ${state.gouraudSpecular}`,
@@ -163,16 +191,16 @@ export function sceneToml(state, method) {
     `polygons = "${state.polygons}"`,
     `specular = "${state.specular}"`,
   );
-  if (state.fixedPoint !== null) lines.push(`fixed_point_bits = ${Math.round(state.fixedPoint)}`);
+  if (state.fixedPoint !== null) render.push(`fixed_point_bits = ${Math.round(state.fixedPoint)}`);
   if (state.palette !== null) {
-    lines.push(`palette_shades = ${Math.round(state.palette.shades)}`, `palette_offset = ${Math.round(state.palette.offset)}`);
+    render.push(`palette_shades = ${Math.round(state.palette.shades)}`, `palette_offset = ${Math.round(state.palette.offset)}`);
   }
-  lines.push(
+  render.push(
     `yaw = ${float(state.camera.yaw)}`,
     `pitch = ${float(state.camera.pitch)}`,
     `zoom = ${float(state.camera.zoom)}`,
-    '',
   );
+  lines.push('[render]', ...render, ...rest('render', state, render), '');
   return lines.join('\n');
 }
 
@@ -181,40 +209,35 @@ export function sceneToml(state, method) {
 const round = (x, digits = 3) => Number(x.toFixed(digits));
 
 /**
- * A light in a link: kind:x,y,z:r,g,b:intensity, then a point light's
- * attenuation k0,k1,k2 when it has one, and :off when it is off.
+ * A light in a link: its kind, then the fields (LIGHT_FIELDS) its kind has
+ * (kind:x,y,z:r,g,b:intensity, then a point light's attenuation k0,k1,k2),
+ * and :off when it is off. A field that links made before it lack (not
+ * `inEveryLink`) is left out, from the end, while it is at its default.
  */
 function lightToLink(l) {
-  const f = (name, v) => formatLink(param(name, 'light'), v);
-  const vector = l.kind === 'point' ? f('position', l.position) : f('direction', l.direction);
-  const attenuation = f('attenuation', l.attenuation);
-  const faded = l.kind === 'point' && attenuation !== f('attenuation', defaultLight().attenuation);
-  return [l.kind, vector, f('color', l.color), f('intensity', l.intensity), ...(faded ? [attenuation] : []), ...(l.on ? [] : ['off'])].join(':');
+  const fields = LIGHT_FIELDS.filter((q) => applies(q, l));
+  const texts = fields.map((q) => formatLink(q, l[q.name]));
+  const d = defaultLight();
+  while (fields.length && !fields.at(-1).inEveryLink && texts.at(-1) === formatLink(fields.at(-1), d[fields.at(-1).name])) {
+    fields.pop();
+    texts.pop();
+  }
+  return [l.kind, ...texts, ...(l.on ? [] : ['off'])].join(':');
 }
 
 function lightFromLink(text) {
-  const parts = text.split(':');
-  if (parts.length < 4 || parts.length > 6) return undefined;
-  const [kind, vector, color, intensity, ...rest] = parts;
+  const [kind, ...parts] = text.split(':');
   const light = defaultLight();
-  const read = (name, t) => parseLink(param(name, 'light'), t);
-  const off = rest.length > 0 && rest[rest.length - 1] === 'off';
-  const extra = off ? rest.slice(0, -1) : rest;
-  if (extra.length > 1 || (extra.length && kind !== 'point')) return undefined;
-  if (extra.length) {
-    light.attenuation = read('attenuation', extra[0]);
-    if (light.attenuation === undefined) return undefined;
-  }
-  light.kind = read('kind', kind);
-  light.color = read('color', color);
-  light.intensity = read('intensity', intensity);
-  const v = read(kind === 'directional' ? 'direction' : 'position', vector);
-  if ([light.kind, light.color, light.intensity, v].includes(undefined)) return undefined;
-  if (kind === 'directional') {
-    if (v.every((x) => x === 0)) return undefined;
-    light.direction = v;
-  } else {
-    light.position = v;
+  light.kind = parseLink(param('kind', 'light'), kind);
+  if (light.kind === undefined) return undefined;
+  const fields = LIGHT_FIELDS.filter((q) => applies(q, light));
+  const always = fields.filter((q) => q.inEveryLink).length;
+  const off = parts.length > always && parts.at(-1) === 'off';
+  const values = off ? parts.slice(0, -1) : parts;
+  if (values.length < always || values.length > fields.length) return undefined;
+  for (const [i, v] of values.entries()) {
+    light[fields[i].name] = parseLink(fields[i], v);
+    if (light[fields[i].name] === undefined) return undefined;
   }
   light.on = !off;
   return light;
@@ -240,9 +263,8 @@ export function toHash(state, view = defaultView()) {
   if (singlePointLight(state.lights)) {
     const [l] = state.lights;
     const [dl] = d.lights;
-    for (const name of ['color', 'intensity', 'position', 'attenuation']) {
-      const q = param(name, 'light');
-      if (formatLink(q, l[name]) !== formatLink(q, dl[name])) p.set(q.link, formatLink(q, l[name]));
+    for (const q of LIGHT.filter((q) => applies(q, l))) {
+      if (formatLink(q, l[q.name]) !== formatLink(q, dl[q.name])) p.set(q.link, formatLink(q, l[q.name]));
     }
   } else {
     p.set('lights', state.lights.map(lightToLink).join(';'));
@@ -288,10 +310,7 @@ export function fromHash(hash) {
     if (lights.length <= MAX_LIGHTS && !lights.includes(undefined)) state.lights = lights;
     else invalid.push('lights');
   } else {
-    for (const name of ['color', 'intensity', 'position', 'attenuation']) {
-      const q = param(name, 'light');
-      read(q, q.link, (v) => (state.lights[0][name] = v));
-    }
+    for (const q of LIGHT.filter((q) => applies(q, state.lights[0]))) read(q, q.link, (v) => (state.lights[0][q.name] = v));
   }
   const shades = param('palette.shades');
   read(shades, 'palette', (v) => (state.palette = { shades: v, offset: 0 }));
