@@ -357,8 +357,8 @@ pub struct SceneOverrides {
     #[command(flatten)]
     pub params: ParamFlags,
     /// Vertex normals.
-    #[arg(long, value_enum)]
-    pub normals: Option<NormalsArg>,
+    #[arg(long, value_parser = choice::<NormalsChoice>())]
+    pub normals: Option<NormalsChoice>,
     /// Attribute interpolation.
     #[arg(long, value_parser = choice::<Interpolation>())]
     pub interpolation: Option<Interpolation>,
@@ -385,21 +385,6 @@ pub fn choice<T: Choice + Send + Sync + Clone>() -> impl clap::builder::TypedVal
         .map(|v| clap::builder::PossibleValue::new(v.name()).help(v.help()));
     clap::builder::PossibleValuesParser::new(values)
         .map(|name| T::from_name(&name).expect("a possible value is a name"))
-}
-
-/// `--normals`
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum NormalsArg {
-    /// The file's normals when present, else uniform.
-    Auto,
-    /// The file's normals.
-    File,
-    /// Unweighted average of adjacent face normals.
-    Uniform,
-    /// Area-weighted.
-    Area,
-    /// Angle-weighted.
-    Angle,
 }
 
 fn parse_numbers<const N: usize, T: std::str::FromStr>(
@@ -471,14 +456,8 @@ impl SceneOverrides {
             scene.render.height = Some(h);
         }
         self.params.apply(scene)?;
-        if let Some(n) = self.normals {
-            scene.model.normals = Some(match n {
-                NormalsArg::Auto => NormalsChoice::Auto,
-                NormalsArg::File => NormalsChoice::File,
-                NormalsArg::Uniform => NormalsChoice::Uniform,
-                NormalsArg::Area => NormalsChoice::Area,
-                NormalsArg::Angle => NormalsChoice::Angle,
-            });
+        if self.normals.is_some() {
+            scene.model.normals = self.normals;
         }
         if self.interpolation.is_some() {
             scene.render.interpolation = self.interpolation;

@@ -46,6 +46,12 @@ const KINDS = { number: 'number', integer: 'int', rgb: 'rgb', vec3: 'vec3', bool
  * what it chooses).
  */
 function fromSchema(p) {
+  if (p.choicesOf) {
+    // A choice the page writes itself (a light's kind, the normals): its values and default from the core.
+    const c = SCHEMA.choices.find((q) => q.key === p.choicesOf);
+    if (!c) throw new Error(`params.json has no choice ${p.choicesOf}`);
+    return { ...p, kind: 'choice', choices: c.values.map((v) => v.name), default: c.default };
+  }
   if (!p.key) return p;
   const c = SCHEMA.choices.findIndex((q) => q.key === p.key);
   if (c >= 0) {
@@ -91,7 +97,7 @@ export const PARAMS = [
   // LIGHT_FIELDS). A vector's sliders are named by its parts alone
   // (light-1-x).
   { name: 'on', link: 'on', group: 'light', kind: 'bool', default: true },
-  { name: 'kind', link: 'kind', group: 'light', kind: 'choice', choices: ['point', 'directional'], default: 'point' },
+  { name: 'kind', choicesOf: 'lights.kind', link: 'kind', group: 'light' },
   { name: 'color', key: 'lights.color', link: 'light', group: 'light', inEveryLink: true },
   { name: 'intensity', key: 'lights.intensity', link: 'lightI', group: 'light', inEveryLink: true, slider: [0, 3], step: 0.01 },
   { name: 'position', key: 'lights.position', link: 'lightPos', group: 'light', when: point, inEveryLink: true, control: '', slider: [-10, 10], step: 0.05 },
@@ -109,7 +115,7 @@ export const PARAMS = [
   { name: 'camera.pitch', key: 'render.pitch', link: 'pitch', group: 'camera', slider: [-89, 89], step: 1, digits: 2 },
   { name: 'camera.zoom', key: 'render.zoom', link: 'zoom', group: 'camera', slider: [0.25, 8], step: 0.01 },
 
-  { name: 'normals', link: 'normals', group: 'shading', kind: 'choice', choices: ['auto', 'file', 'uniform', 'area', 'angle'], default: 'auto' },
+  { name: 'normals', choicesOf: 'model.normals', link: 'normals', group: 'shading' },
   { name: 'crease', key: 'model.crease_angle', link: 'crease', group: 'shading', nullable: true, step: 1 },
   { name: 'gouraudSpecular', key: 'render.gouraud_specular', link: 'gouraudSpecular', group: 'shading' },
   { name: 'interpolation', key: 'render.interpolation', link: 'interpolation', group: 'shading' },

@@ -35,12 +35,13 @@ pub use clip::{clip_polygon, ClipVertex};
 pub use color::{Rgb, Rgb8};
 pub use frame::{coverage, render, Renderer};
 pub use image::Image;
-pub use light::{Light, LightKind, Material, Specular, NO_ATTENUATION};
+pub use light::{Light, LightKind, LightKindName, Material, Specular, NO_ATTENUATION};
 pub use limits::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 pub use mesh::{CornerNormals, Mesh, MeshError};
 pub use models::{builtin_model, builtin_model_info, ModelError, ModelInfo, BUILTIN_MODELS};
 pub use normals::{
     face_normal, face_normal_unnormalized, face_normals, vertex_normals, NormalWeighting,
+    NormalsChoice,
 };
 pub use palette::{Palette, PaletteShade};
 pub use probe::{

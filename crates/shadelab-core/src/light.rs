@@ -107,3 +107,19 @@ choices!(Specular, "specular term", {
     Phong => "phong": "max(0, r·v)^p with r the mirrored light direction (Phong, 1975)",
     BlinnPhong => "blinn-phong": "max(0, n·h)^p with h halfway between light and eye (Blinn, 1977)",
 });
+
+/// A light's kind as a scene names it (`kind` of `[[lights]]`); the
+/// light itself, with its position or direction, is a [`LightKind`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub enum LightKindName {
+    /// At a position.
+    #[default]
+    Point,
+    /// At infinity, along a direction.
+    Directional,
+}
+
+choices!(LightKindName, "light kind", {
+    Point => "point": "a light at a position, shining every way",
+    Directional => "directional": "a light at infinity, its rays parallel along a direction",
+});

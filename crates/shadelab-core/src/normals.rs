@@ -32,6 +32,31 @@ pub enum NormalWeighting {
     Angle,
 }
 
+/// Where a scene's vertex normals come from (`model.normals`): the file's,
+/// or made from the faces with one of the [`NormalWeighting`]s.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub enum NormalsChoice {
+    /// The file's normals when it has them, else uniform.
+    #[default]
+    Auto,
+    /// The file's normals (an error when it has none).
+    File,
+    /// Unweighted average of adjacent face normals.
+    Uniform,
+    /// Area-weighted average.
+    Area,
+    /// Angle-weighted average.
+    Angle,
+}
+
+choices!(NormalsChoice, "vertex normals", {
+    Auto => "auto": "the file's normals when it has them, else uniform",
+    File => "file": "the file's normals (an error when it has none)",
+    Uniform => "uniform": "unweighted average of the adjacent face normals",
+    Area => "area": "face normals weighted by the faces' areas",
+    Angle => "angle": "face normals weighted by the angles of their corners at the vertex",
+});
+
 /// The face normal of a polygon, not normalised: twice the polygon's area in
 /// length for a planar polygon, zero for a degenerate one.
 pub fn face_normal_unnormalized(points: &[Vec3]) -> Vec3 {

@@ -18,9 +18,10 @@ use serde_json::{json, Value as Json};
 
 use crate::choice::Choice;
 use crate::color::Rgb8;
-use crate::light::{Material, Specular, NO_ATTENUATION};
+use crate::light::{LightKindName, Material, Specular, NO_ATTENUATION};
 use crate::limits::{MAX_IMAGE_SIDE, MAX_SCENE_COORDINATE};
 use crate::models::BUILTIN_MODELS;
+use crate::normals::NormalsChoice;
 use crate::palette::Palette;
 use crate::scene::{Interpolation, Polygons, Rasterizer, RenderOptions, Shading};
 use crate::scene::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
@@ -573,6 +574,8 @@ pub fn schema() -> Json {
         choice::<Rasterizer>("render.rasterizer"),
         choice::<Polygons>("render.polygons"),
         choice::<Specular>("render.specular"),
+        choice::<NormalsChoice>("model.normals"),
+        choice::<LightKindName>("lights.kind"),
     ];
     json!({ "params": params, "choices": choices })
 }

@@ -24,6 +24,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 use shadelab_core::limits::MAX_SCENE_BYTES;
 use shadelab_core::{Interpolation, Polygons, Rasterizer, Shading, Specular};
+pub use shadelab_core::{LightKindName, NormalsChoice};
 
 use crate::input::{read_capped, unify_line_ends};
 use crate::LoadError;
@@ -62,23 +63,6 @@ pub struct ModelSection {
     pub crease_angle: Option<f32>,
     /// Tessellation level of a built-in model.
     pub detail: Option<u32>,
-}
-
-/// Where vertex normals come from.
-#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum NormalsChoice {
-    /// The file's normals when it has them, else uniform.
-    #[default]
-    Auto,
-    /// The file's normals (an error when it has none).
-    File,
-    /// Unweighted average of adjacent face normals.
-    Uniform,
-    /// Area-weighted average.
-    Area,
-    /// Angle-weighted average.
-    Angle,
 }
 
 /// `[camera]`
@@ -154,16 +138,6 @@ pub struct AmbientSection {
     pub color: Option<[i64; 3]>,
     /// Default 0.2.
     pub intensity: Option<f32>,
-}
-
-/// The kind of a light.
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum LightKindName {
-    /// At a position.
-    Point,
-    /// At infinity, along a direction.
-    Directional,
 }
 
 /// `[[lights]]`
