@@ -238,6 +238,14 @@ fn messages_repeat_the_value_given() {
         assert!(err.contains(needle), "{needle:?} in {err}");
     }
     assert!(!err.contains("got 180"), "{err}");
-    let err = scene_error("[camera]\neye = [0, 0, 3]\nnear = 1e-40\nfar = -1\n", &[]);
+    let err = scene_error(
+        "[camera]\neye = [0, 0, 3]\nnear = 1e-40\nfar = 1e-41\n",
+        &[],
+    );
     assert!(err.contains("near = 1e-40"), "{err}");
+    let err = scene_error("[camera]\neye = [0, 0, 3]\nfar = -1e-40\n", &[]);
+    assert!(
+        err.contains("camera.far") && err.contains("got -1e-40"),
+        "{err}"
+    );
 }

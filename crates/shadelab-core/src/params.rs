@@ -114,6 +114,32 @@ pub struct Param {
     /// The command line's flag that sets it (without `--`), or empty when
     /// it has none of its own (`render.width` is `--size`'s).
     pub flag: &'static str,
+    /// Which bounds are themselves refused (a field of view lies strictly
+    /// between 0 and 180 degrees, a near plane is more than 0).
+    pub open: Open,
+}
+
+/// Which of a parameter's bounds are refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Open {
+    /// `min..=max`.
+    #[default]
+    Neither,
+    /// More than `min`, at most `max`.
+    Min,
+    /// Strictly between `min` and `max`.
+    Both,
+}
+
+impl Open {
+    /// Its name in the schema.
+    pub fn name(self) -> &'static str {
+        match self {
+            Open::Neither => "neither",
+            Open::Min => "min",
+            Open::Both => "both",
+        }
+    }
 }
 
 /// The parts of a colour.
@@ -133,6 +159,11 @@ impl Param {
             format!(" {}", self.unit)
         };
         let (lo, hi) = (num(self.min), num(self.max));
+        match self.open {
+            Open::Both => return format!("strictly between {lo} and {hi}{unit}"),
+            Open::Min => return format!("more than {lo} and at most {hi}{unit}"),
+            Open::Neither => {}
+        }
         match self.kind {
             Kind::Vec3 if self.min == -self.max => format!("within ±{hi}{unit}"),
             Kind::Vec3 => format!("each {lo}..={hi}{unit}"),
@@ -168,7 +199,12 @@ impl Param {
     /// The problem, for the caller to prefix with the key it read.
     pub fn check(&self, v: f32) -> Result<f32, String> {
         let (lo, hi) = (self.min as f32, self.max as f32);
-        if v.is_finite() && (lo..=hi).contains(&v) {
+        let within = match self.open {
+            Open::Both => lo < v && v < hi,
+            Open::Min => lo < v && v <= hi,
+            Open::Neither => (lo..=hi).contains(&v),
+        };
+        if v.is_finite() && within {
             Ok(v)
         } else {
             Err(format!(
@@ -426,6 +462,50 @@ fn table() -> Vec<Param> {
                 "Specular exponent: the larger, the smaller and sharper the highlight.")
         },
         Param {
+            absent: "the camera frames the model's bounding sphere; required in [camera]",
+            typical: Some(Value::Three([0.0, 0.0, 3.0])),
+            label: "Eye",
+            parts: XYZ,
+            ..entry("camera.eye", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
+                decimal(MAX_SCENE_COORDINATE), "", "Where the camera is, in world coordinates.")
+        },
+        Param {
+            default: Some(Value::Three([0.0; 3])),
+            label: "Target",
+            parts: XYZ,
+            ..entry("camera.target", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
+                decimal(MAX_SCENE_COORDINATE), "", "The point the camera looks at.")
+        },
+        Param {
+            default: Some(Value::Three([0.0, 1.0, 0.0])),
+            label: "Up",
+            parts: XYZ,
+            ..entry("camera.up", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
+                decimal(MAX_SCENE_COORDINATE), "",
+                "Up on the screen: any vector not along the line of sight.")
+        },
+        Param {
+            default: number(45.0),
+            label: "Field of view",
+            open: Open::Both,
+            ..entry("camera.fov_y", Kind::Number, 0.0, 180.0, "degrees",
+                "The vertical field of view.")
+        },
+        Param {
+            default: number(0.1),
+            label: "Near plane",
+            open: Open::Min,
+            ..entry("camera.near", Kind::Number, 0.0, decimal(MAX_SCENE_COORDINATE), "",
+                "Distance to the near clipping plane, less than far.")
+        },
+        Param {
+            default: number(100.0),
+            label: "Far plane",
+            open: Open::Min,
+            ..entry("camera.far", Kind::Number, 0.0, decimal(MAX_SCENE_COORDINATE), "",
+                "Distance to the far clipping plane, more than near.")
+        },
+        Param {
             default: number(f64::from(options.width)),
             label: "Width",
             ..entry("render.width", Kind::Integer, 1.0, f64::from(MAX_IMAGE_SIDE), "pixels",
@@ -531,6 +611,7 @@ fn entry(
         label: "",
         parts: &[],
         flag: "",
+        open: Open::Neither,
     }
 }
 
@@ -565,6 +646,7 @@ pub fn schema() -> Json {
                 "label": p.label,
                 "parts": p.parts,
                 "flag": p.flag,
+                "open": p.open.name(),
             })
         })
         .collect::<Vec<_>>();

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use shadelab_core::params::{self, Kind, Param, Value};
+use shadelab_core::params::{self, Kind, Open, Param, Value};
 use shadelab_io::SceneFile;
 
 /// `value` of `p` as TOML.
@@ -40,6 +40,10 @@ fn scene(p: &Param, value: &str) -> String {
         return format!("[[lights]]\nkind = \"{kind}\"\n{position}{name} = {value}\n");
     }
     let mut text = format!("[{section}]\n{name} = {value}\n");
+    if section == "camera" && name != "eye" {
+        // A [camera] must say where the eye is.
+        text.push_str("eye = [0, 0, 3]\n");
+    }
     if !p.needs.is_empty() {
         let needed = params::get(p.needs);
         let (needed_section, needed_name) = needed.key.split_once('.').unwrap();
@@ -74,8 +78,14 @@ fn outside(p: &Param) -> Vec<String> {
     let (below, above) = (p.min - step(p.min), p.max + step(p.max));
     let number = |x: f64| toml_value(p, &Value::Number(x));
     let three = |x: f64| toml_value(p, &Value::Three([p.min.max(0.0), x, p.min.max(0.0)]));
+    // An open bound is itself outside.
+    let open = match p.open {
+        Open::Neither => vec![],
+        Open::Min => vec![number(p.min)],
+        Open::Both => vec![number(p.min), number(p.max)],
+    };
     match p.kind {
-        Kind::Number | Kind::Integer => vec![number(below), number(above)],
+        Kind::Number | Kind::Integer => [vec![number(below), number(above)], open].concat(),
         Kind::Rgb | Kind::Vec3 => vec![three(below), three(above)],
         Kind::Bool | Kind::Text => Vec::new(),
     }

@@ -497,11 +497,11 @@ fn file_normals_requested_for_a_builtin_without_them() {
 #[test]
 fn camera_errors_are_reported_under_camera() {
     assert_value_error("[camera]\neye = [1, 2, 3]\ntarget = [1, 2, 3]\n", "camera");
-    assert_value_error("[camera]\neye = [0, 0, 3]\nfov_y = 0\n", "camera");
-    assert_value_error("[camera]\neye = [0, 0, 3]\nfov_y = 180\n", "camera");
+    assert_value_error("[camera]\neye = [0, 0, 3]\nfov_y = 0\n", "camera.fov_y");
+    assert_value_error("[camera]\neye = [0, 0, 3]\nfov_y = 180\n", "camera.fov_y");
     assert_value_error("[camera]\neye = [0, 0, 3]\nnear = 5\nfar = 5\n", "camera");
     assert_value_error("[camera]\neye = [0, 0, 3]\nnear = 10\nfar = 5\n", "camera");
-    assert_value_error("[camera]\neye = [0, 0, 3]\nnear = 0\n", "camera");
+    assert_value_error("[camera]\neye = [0, 0, 3]\nnear = 0\n", "camera.near");
     assert_value_error("[camera]\neye = [0, 0, 3]\nup = [0, 0, 1]\n", "camera");
     assert_value_error("[camera]\neye = [0, 0, nan]\n", "camera.eye");
 }

@@ -23,6 +23,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use shadelab_core::limits::MAX_SCENE_BYTES;
+use shadelab_core::params;
 use shadelab_core::{Interpolation, Polygons, Rasterizer, Shading, Specular};
 pub use shadelab_core::{LightKindName, NormalsChoice};
 
@@ -116,17 +117,18 @@ mod exactly {
     }
 }
 
+/// The camera's defaults: the core's table's.
 fn default_up() -> [f32; 3] {
-    [0.0, 1.0, 0.0]
+    params::get("camera.up").default_three().map(|c| c as f32)
 }
 fn default_fov() -> f32 {
-    45.0
+    params::get("camera.fov_y").default_number()
 }
 fn default_near() -> f32 {
-    0.1
+    params::get("camera.near").default_number()
 }
 fn default_far() -> f32 {
-    100.0
+    params::get("camera.far").default_number()
 }
 
 /// `[ambient]`

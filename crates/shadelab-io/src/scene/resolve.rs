@@ -10,7 +10,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
-use shadelab_core::limits::{MAX_MODEL_COORDINATE_WITH_CAMERA, MAX_SCENE_COORDINATE};
+use shadelab_core::limits::MAX_MODEL_COORDINATE_WITH_CAMERA;
 use shadelab_core::params;
 use shadelab_core::{
     builtin_model, builtin_model_info, vertex_normals, Camera, CornerNormals, Light, LightKind,
@@ -286,9 +286,9 @@ impl SceneFile {
                     eye: vec3("camera.eye", c.eye)?,
                     target: vec3("camera.target", c.target)?,
                     up: vec3("camera.up", c.up)?,
-                    fov_y_degrees: c.fov_y,
-                    near: c.near,
-                    far: c.far,
+                    fov_y_degrees: number("camera.fov_y", Some(c.fov_y))?,
+                    near: number("camera.near", Some(c.near))?,
+                    far: number("camera.far", Some(c.far))?,
                 };
                 camera
                     .validate()
@@ -478,20 +478,10 @@ fn whole(key: &str, v: u32) -> Result<u32, SceneError> {
     Ok(v)
 }
 
-/// A camera vector: finite and within the scene's coordinates.
+/// A camera vector, checked against the table's range.
 fn vec3(key: &str, v: [f32; 3]) -> Result<Vec3, SceneError> {
-    let given = v;
-    let v = Vec3::from_array(v);
-    if v.is_finite() && v.abs().max_element() <= MAX_SCENE_COORDINATE {
-        Ok(v)
-    } else {
-        Err(value_error(
-            key,
-            format!(
-                "must be finite and within ±{}, got [{}]",
-                format_number(MAX_SCENE_COORDINATE),
-                given.map(format_number).join(", ")
-            ),
-        ))
-    }
+    params::get(key)
+        .check_vec3(v)
+        .map(Vec3::from_array)
+        .map_err(|e| value_error(key, e))
 }
