@@ -132,7 +132,7 @@ fn arg(param: &'static Param) -> Arg {
             .value_name(value_name(param))
             .allow_hyphen_values(true)
             .value_parser(move |text: &str| {
-                parse(param, text).map_err(|e| format!("{} {e}", param.key))
+                parse(param, text).map_err(|e| format!("{}: {e}", param.key))
             }),
     }
 }

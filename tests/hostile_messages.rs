@@ -187,7 +187,7 @@ fn negative_numbers_are_told_the_range_allowed() {
         (vec!["render", "-o", "o.png", "--size", "-5x5"], "1..=16384"),
         (
             vec!["render", "-o", "o.png", "--detail", "-3"],
-            "model.detail must be 0..=1024",
+            "model.detail: must be 0..=1024",
         ),
         (
             vec!["render", "-o", "o.png", "--ambient", "-1,0,0"],

@@ -367,7 +367,7 @@ fn palette_and_fixed_point_flags_and_scene_keys() {
             &["render", "--fixed-point", "40", "-o", "x.png"],
         ),
         2,
-        &["--fixed-point <BITS>': render.fixed_point_bits must be 1..=30 bits, got 40"],
+        &["--fixed-point <BITS>': render.fixed_point_bits: must be 1..=30 bits, got 40"],
     );
     assert_fails(
         &run(
