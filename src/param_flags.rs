@@ -57,19 +57,23 @@ impl ParamFlags {
     /// The scene's error for a key the format does not hold (a mistake in
     /// the table, which the tests go through).
     pub fn apply(&self, scene: &mut SceneFile) -> Result<(), shadelab_io::SceneError> {
+        let mut edits = Vec::new();
         for (param, value) in &self.given {
-            scene.set(param.key, Some(value.clone()))?;
+            edits.push((param.key, Some(value.clone())));
             for dependent in params::all().iter().filter(|q| q.needs == param.key) {
                 if !self.has(dependent.key) {
-                    scene.set(dependent.key, None)?;
+                    edits.push((dependent.key, None));
                 }
             }
             if param.key == "lights.position" {
-                scene.set("lights.kind", Some(toml::Value::from("point")))?;
-                scene.set("lights.direction", None)?;
+                edits.push(("lights.kind", Some(toml::Value::from("point"))));
+                edits.push(("lights.direction", None));
             }
         }
-        Ok(())
+        if edits.is_empty() {
+            return Ok(());
+        }
+        scene.edit(&edits)
     }
 }
 

@@ -132,6 +132,15 @@ pub enum Open {
 }
 
 impl Open {
+    /// Whether `v` is within `lo` and `hi`, these bounds refused as said.
+    pub fn contains<T: PartialOrd>(self, lo: T, hi: T, v: T) -> bool {
+        match self {
+            Open::Neither => lo <= v && v <= hi,
+            Open::Min => lo < v && v <= hi,
+            Open::Both => lo < v && v < hi,
+        }
+    }
+
     /// Its name in the schema.
     pub fn name(self) -> &'static str {
         match self {
@@ -199,12 +208,7 @@ impl Param {
     /// The problem, for the caller to prefix with the key it read.
     pub fn check(&self, v: f32) -> Result<f32, String> {
         let (lo, hi) = (self.min as f32, self.max as f32);
-        let within = match self.open {
-            Open::Both => lo < v && v < hi,
-            Open::Min => lo < v && v <= hi,
-            Open::Neither => (lo..=hi).contains(&v),
-        };
-        if v.is_finite() && within {
+        if v.is_finite() && self.open.contains(lo, hi, v) {
             Ok(v)
         } else {
             Err(format!(
@@ -220,7 +224,7 @@ impl Param {
     /// # Errors
     /// As [`Param::check`].
     pub fn check_whole(&self, v: i64) -> Result<i64, String> {
-        if (self.min..=self.max).contains(&(v as f64)) {
+        if self.open.contains(self.min, self.max, v as f64) {
             Ok(v)
         } else {
             Err(format!("must be {}, got {v}", self.range_text()))
@@ -234,7 +238,7 @@ impl Param {
     pub fn check_rgb(&self, c: [i64; 3]) -> Result<Rgb8, String> {
         match c
             .iter()
-            .find(|&&v| !(self.min..=self.max).contains(&(v as f64)))
+            .find(|&&v| !self.open.contains(self.min, self.max, v as f64))
         {
             Some(v) => Err(format!(
                 "each channel must be {}..={}, got {v}",
@@ -251,7 +255,9 @@ impl Param {
     /// As [`Param::check`].
     pub fn check_vec3(&self, v: [f32; 3]) -> Result<[f32; 3], String> {
         let (lo, hi) = (self.min as f32, self.max as f32);
-        if v.iter().all(|c| c.is_finite() && (lo..=hi).contains(c)) {
+        if v.iter()
+            .all(|&c| c.is_finite() && self.open.contains(lo, hi, c))
+        {
             Ok(v)
         } else {
             Err(format!(

@@ -336,43 +336,48 @@ impl SceneFile {
         Ok(text)
     }
 
-    /// Sets the scene-file key `key` (`material.ks`; a light's, as
+    /// Sets each scene-file key of `edits` (`material.ks`; a light's, as
     /// `lights.position`, is the first light's, made when there is none) to
-    /// `value`, or removes it (`None`), as if the file had said so. The
-    /// command line's flags write themselves here, by the key the table of
-    /// parameters gives them ([`shadelab_core::params`]).
+    /// its value, or removes it (`None`), in order, as if the file had said
+    /// so. The command line's flags write themselves here, by the key the
+    /// table of parameters gives them ([`shadelab_core::params`]): the
+    /// scene goes to TOML and back once for all of them.
     ///
     /// # Errors
-    /// [`SceneError::Value`] naming `key` when it is not `section.key` of
-    /// the format or `value` is not of its type.
-    pub fn set(&mut self, key: &str, value: Option<toml::Value>) -> Result<(), SceneError> {
-        let bad = |message: String| value_error(key, message);
-        let (section, field) = key
-            .split_once('.')
-            .ok_or_else(|| bad("not a key of the form section.key".to_owned()))?;
-        let mut document = toml::Table::try_from(&*self).map_err(|e| bad(e.to_string()))?;
-        let slot = document.entry(section).or_insert_with(|| match section {
-            "lights" => toml::Value::Array(Vec::new()),
-            _ => toml::Value::Table(toml::Table::new()),
-        });
-        let table = match slot {
-            toml::Value::Array(lights) => {
-                if lights.is_empty() {
-                    let light = toml::Value::try_from(LightSection::default_light())
-                        .map_err(|e| bad(e.to_string()))?;
-                    lights.push(light);
+    /// [`SceneError::Value`] naming the key when it is not `section.key` of
+    /// the format, or the keys when a value is not of its key's type.
+    pub fn edit(&mut self, edits: &[(&str, Option<toml::Value>)]) -> Result<(), SceneError> {
+        let keys = || edits.iter().map(|(k, _)| *k).collect::<Vec<_>>().join(", ");
+        let mut document =
+            toml::Table::try_from(&*self).map_err(|e| value_error(keys(), e.to_string()))?;
+        for (key, value) in edits {
+            let bad = |message: String| value_error(*key, message);
+            let (section, field) = key
+                .split_once('.')
+                .ok_or_else(|| bad("not a key of the form section.key".to_owned()))?;
+            let slot = document.entry(section).or_insert_with(|| match section {
+                "lights" => toml::Value::Array(Vec::new()),
+                _ => toml::Value::Table(toml::Table::new()),
+            });
+            let table = match slot {
+                toml::Value::Array(lights) => {
+                    if lights.is_empty() {
+                        let light = toml::Value::try_from(LightSection::default_light())
+                            .map_err(|e| bad(e.to_string()))?;
+                        lights.push(light);
+                    }
+                    lights[0].as_table_mut()
                 }
-                lights[0].as_table_mut()
+                other => other.as_table_mut(),
             }
-            other => other.as_table_mut(),
+            .ok_or_else(|| bad(format!("[{section}] is not a section")))?;
+            match value {
+                Some(v) => table.insert(field.to_owned(), v.clone()),
+                None => table.remove(field),
+            };
         }
-        .ok_or_else(|| bad(format!("[{section}] is not a section")))?;
-        match value {
-            Some(v) => table.insert(field.to_owned(), v),
-            None => table.remove(field),
-        };
         *self = SceneFile::deserialize(toml::Value::Table(document))
-            .map_err(|e| bad(e.message().to_owned()))?;
+            .map_err(|e| value_error(keys(), e.message().to_owned()))?;
         Ok(())
     }
 
