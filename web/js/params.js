@@ -46,19 +46,17 @@ const KINDS = { number: 'number', integer: 'int', rgb: 'rgb', vec3: 'vec3', bool
  * what it chooses).
  */
 function fromSchema(p) {
-  if (p.choicesOf) {
-    // A choice the page writes itself (a light's kind, the normals): its values and default from the core.
-    const c = SCHEMA.choices.find((q) => q.key === p.choicesOf);
-    if (!c) throw new Error(`params.json has no choice ${p.choicesOf}`);
-    return { ...p, kind: 'choice', choices: c.values.map((v) => v.name), default: c.default };
-  }
-  if (!p.key) return p;
-  const c = SCHEMA.choices.findIndex((q) => q.key === p.key);
+  const c = SCHEMA.choices.findIndex((q) => q.key === (p.choicesOf ?? p.key));
+  if (p.choicesOf && c < 0) throw new Error(`params.json has no choice ${p.choicesOf}`);
   if (c >= 0) {
     const choice = SCHEMA.choices[c];
+    const values = { kind: 'choice', choices: choice.values.map((v) => v.name), default: choice.default };
+    // A choice the page writes itself (a light's kind, the normals): only its values and default.
+    if (p.choicesOf) return { ...p, ...values };
     const label = choice.what.charAt(0).toUpperCase() + choice.what.slice(1);
-    return { ...p, kind: 'choice', choices: choice.values.map((v) => v.name), default: choice.default, label, parts: [], order: SCHEMA.params.length + c };
+    return { ...p, ...values, label, parts: [], order: SCHEMA.params.length + c };
   }
+  if (!p.key) return p;
   const i = SCHEMA.params.findIndex((q) => q.key === p.key);
   if (i < 0) throw new Error(`params.json has no ${p.key}`);
   const s = SCHEMA.params[i];
