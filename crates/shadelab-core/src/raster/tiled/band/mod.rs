@@ -66,7 +66,9 @@ pub(crate) struct Band {
     /// The columns this frame's triangles may draw, in whole blocks of 8.
     columns: Range<usize>,
     depth: Vec<f32>,
+    /// Packed colours; pixel `i`'s is at `color_at + i` (see [`skew`]).
     color: Vec<i32>,
+    color_at: usize,
     /// Coverage counts (coverage pass only).
     pub counts: Vec<u32>,
     /// Polygon stamps for self-crossing polygons, cleared when first used in a frame.
@@ -122,7 +124,7 @@ impl Band {
         }
         let len = (width as usize).next_multiple_of(8) * BAND_ROWS as usize;
         room(&mut self.depth, len);
-        room(&mut self.color, len);
+        room(&mut self.color, len + SKEW_ROOM);
         room(&mut self.stamp, len);
     }
 
@@ -143,8 +145,9 @@ impl Band {
             Pass::Shade => {
                 self.columns =
                     (columns.start & !7)..columns.end.next_multiple_of(8).min(self.stride);
-                self.color.resize(len, 0);
+                self.color.resize(len + SKEW_ROOM, 0);
                 self.depth.resize(len, 1.0);
+                self.color_at = skew(&self.depth, &self.color);
                 for row in self.depth.chunks_exact_mut(self.stride) {
                     row[self.columns.clone()].fill(1.0);
                 }
@@ -187,7 +190,7 @@ impl Band {
             }
             let pixels = start + 8 * drawn.start..start + 8 * drawn.end;
             let depths = self.depth[pixels.clone()].chunks_exact(8);
-            let colors = self.color[pixels].chunks_exact(8);
+            let colors = self.color[self.color_at..][pixels].chunks_exact(8);
             for ((block, depth), color) in middle.chunks_exact_mut(24).zip(depths).zip(colors) {
                 let depth = Vf::load(s, depth.try_into().unwrap());
                 let drawn = depth.lt(far);
@@ -203,7 +206,7 @@ impl Band {
                 let at = start + done + j;
                 let c = if self.columns.contains(&(done + j)) && self.depth[at] < 1.0 {
                     covered += 1;
-                    self.color[at]
+                    self.color[self.color_at + at]
                 } else {
                     bg[0]
                 };
@@ -347,6 +350,9 @@ impl Band {
     ) {
         let first_block = f.t.x0 & !7;
         let minus_one = Vi::splat(s, -1);
+        // Counted here, in a register: adding to `self.fragments` per block
+        // chained every block to the last one's store.
+        let mut fragments = 0;
         for y in rows {
             let row_start = (y as u32 - band_y0) as usize * self.stride;
             let (mut e, mut right) = (row_e, right_start);
@@ -360,13 +366,15 @@ impl Band {
                 if inside.mask_bits() != 0 {
                     let x = first_block + block * 8;
                     let row = *row.get_or_insert_with(|| f.row(y));
-                    self.block::<S, Sh, true>(s, f, inside, row_start + x as usize, x, &row);
+                    fragments +=
+                        self.block::<S, Sh, true>(s, f, inside, row_start + x as usize, x, &row);
                 }
             }
             for i in 0..3 {
                 row_e[i] = row_e[i] + row_step[i];
             }
         }
+        self.fragments += u64::from(fragments);
     }
 
     /// Each row's covered span `[left, right)`, found exactly per edge, then
@@ -381,6 +389,7 @@ impl Band {
     ) {
         let t = f.t;
         let lane_index = Vi::ramp(s);
+        let mut fragments = 0;
         for y in rows {
             let Some((left, right)) = span(t, y) else {
                 continue;
@@ -389,18 +398,36 @@ impl Band {
             let row = f.row_all(y);
             let (from, to) = (Vi::splat(s, left - 1), Vi::splat(s, right));
             let mut x = left & !7;
+            if PLAIN && !Sh::DEFERRED {
+                // The row's buffers as local slices, so that the loop keeps
+                // their addresses in registers.
+                let (depth, color) = self.row_buffers(row_start, self.stride);
+                while x < right {
+                    let lanes = lane_index + Vi::splat(s, x);
+                    let inside = lanes.gt(from) & to.gt(lanes);
+                    let at = x as usize;
+                    let depth = (&mut depth[at..at + 8]).try_into().unwrap();
+                    let color = (&mut color[at..at + 8]).try_into().unwrap();
+                    fragments += shade_block(s, f, inside, x, &row, depth, color);
+                    x += 8;
+                }
+                continue;
+            }
             while x < right {
                 let lanes = lane_index + Vi::splat(s, x);
                 let inside = lanes.gt(from) & to.gt(lanes);
-                self.block::<S, Sh, PLAIN>(s, f, inside, row_start + x as usize, x, &row);
+                fragments +=
+                    self.block::<S, Sh, PLAIN>(s, f, inside, row_start + x as usize, x, &row);
                 x += 8;
             }
         }
+        self.fragments += u64::from(fragments);
     }
 
     /// Depth-tests, shades and writes the lanes of `inside` in the block at
-    /// column `x` (buffer index `at`) of `row`. `PLAIN`: a shading pass of a
-    /// triangle that is not part of a self-crossing polygon.
+    /// column `x` (buffer index `at`) of `row`, and returns how many passed
+    /// the depth test. `PLAIN`: a shading pass of a triangle that is not
+    /// part of a self-crossing polygon.
     #[inline(always)]
     fn block<S: Simd, Sh: Shader, const PLAIN: bool>(
         &mut self,
@@ -410,7 +437,7 @@ impl Band {
         at: usize,
         x: i32,
         row: &Row,
-    ) {
+    ) -> u32 {
         let mut inside = inside;
         if !PLAIN && f.t.once != 0 {
             let bits = self.once_per_pixel(inside.mask_bits(), at, f.t.once);
@@ -421,37 +448,34 @@ impl Band {
             for (i, count) in self.counts[at..at + 8].iter_mut().enumerate() {
                 *count += (bits >> i) & 1;
             }
-            return;
+            return 0;
         }
-        let x = f.lanes + Vf::splat(s, (x - f.t.x0) as f32);
-        let depth = x.mul_add(f.dx[0], Vf::splat(s, row.values[0]));
+        if !Sh::DEFERRED {
+            let (depth, color) = self.row_buffers(at, 8);
+            let (depth, color) = ((&mut depth[..8]).try_into(), (&mut color[..8]).try_into());
+            return shade_block(s, f, inside, x, row, depth.unwrap(), color.unwrap());
+        }
         let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
-        let stored = Vf::load(s, depth_slot);
-        let pass = inside & depth.lt(stored);
+        let (x, pass) = depth_test(s, f, inside, x, row, depth_slot);
         let bits = pass.mask_bits();
         if bits == 0 {
-            return;
+            return 0;
         }
-        Vf::select(pass, depth, stored).store(depth_slot);
-        self.fragments += u64::from(bits.count_ones());
+        if bits == 0xff {
+            // A whole block (inside large triangles): no packing needed.
+            let index = Vi::ramp(s) + Vi::splat(s, at as i32);
+            self.queue_block(s, f, x, row, index.0);
+        } else {
+            self.pend(s, f, x, row.dy, bits, at);
+        }
+        bits.count_ones()
+    }
 
-        if Sh::DEFERRED {
-            if bits == 0xff {
-                // A whole block (inside large triangles): no packing needed.
-                let index = Vi::ramp(s) + Vi::splat(s, at as i32);
-                self.queue_block(s, f, x, row, index.0);
-            } else {
-                self.pend(s, f, x, row.dy, bits, at);
-            }
-            return;
-        }
-        let attrs = interpolate(s, f, x, |j| Vf::splat(s, row.values[j]));
-        let colors = f
-            .shader
-            .shade(f.shader_lanes, s, f.t.color, f.t.flip, &attrs);
-        let color_slot: &mut [i32; 8] = (&mut self.color[at..at + 8]).try_into().unwrap();
-        let old = Vi(s.i_load(color_slot), s);
-        s.i_store(Vi::select(pass, colors, old).0, color_slot);
+    /// The depth and colour buffers from buffer index `at`, `len` pixels.
+    #[inline(always)]
+    fn row_buffers(&mut self, at: usize, len: usize) -> (&mut [f32], &mut [i32]) {
+        let color = &mut self.color[self.color_at + at..][..len];
+        (&mut self.depth[at..][..len], color)
     }
 
     /// Drops the lanes a self-crossing polygon already drew, and marks the rest.
@@ -541,6 +565,59 @@ impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
     }
 }
 
+/// The depth test of the lanes of `inside` in the block at column `x` of
+/// `row`: the block's columns relative to the triangle's first (as `f32`)
+/// and the lanes that passed, whose depth is now stored.
+#[inline(always)]
+fn depth_test<S: Simd, Sh: Shader>(
+    s: S,
+    f: &Fill<'_, S, Sh>,
+    inside: Vi<S>,
+    x: i32,
+    row: &Row,
+    depth_slot: &mut [f32; 8],
+) -> (Vf<S>, Vi<S>) {
+    let x = f.lanes + Vf::splat(s, (x - f.t.x0) as f32);
+    let depth = x.mul_add(f.dx[0], Vf::splat(s, row.values[0]));
+    let stored = Vf::load(s, depth_slot);
+    let pass = inside & depth.lt(stored);
+    if pass.mask_bits() != 0 {
+        Vf::select(pass, depth, stored).store(depth_slot);
+    }
+    (x, pass)
+}
+
+/// A block of a shader that is not deferred (flat, Gouraud): depth test,
+/// colours of the lanes that passed written; returns how many passed.
+#[inline(always)]
+fn shade_block<S: Simd, Sh: Shader>(
+    s: S,
+    f: &Fill<'_, S, Sh>,
+    inside: Vi<S>,
+    x: i32,
+    row: &Row,
+    depth_slot: &mut [f32; 8],
+    color_slot: &mut [i32; 8],
+) -> u32 {
+    let (x, pass) = depth_test(s, f, inside, x, row, depth_slot);
+    let bits = pass.mask_bits();
+    if bits == 0 {
+        return 0;
+    }
+    let attrs = interpolate(s, f, x, |j| Vf::splat(s, row.values[j]));
+    let colors = f
+        .shader
+        .shade(f.shader_lanes, s, f.t.color, f.t.flip, &attrs);
+    if bits == 0xff {
+        // A whole block: nothing to keep.
+        s.i_store(colors.0, color_slot);
+    } else {
+        let old = Vi(s.i_load(color_slot), s);
+        s.i_store(Vi::select(pass, colors, old).0, color_slot);
+    }
+    bits.count_ones()
+}
+
 /// The attributes at columns `x` of the triangle, given each plane's value
 /// at the first column of the fragments' rows (for a deferred shader, the
 /// normal flipped for back faces).
@@ -621,6 +698,24 @@ fn span(t: &Triangle, y: i32) -> Option<(i32, i32)> {
         }
     }
     Some((left as i32, right as i32))
+}
+
+/// Room for [`skew`]'s offset: a page of `i32`.
+const SKEW_ROOM: usize = 1024;
+
+/// Where pixel 0's colour goes in `color` so that a pixel's colour and
+/// its depth are half a page apart modulo 4 KiB.
+///
+/// Both buffers are large allocations, which start at the same offset in
+/// their pages; with equal lengths, the colour of pixel `i` and its depth
+/// then shared their address's low 12 bits, which is all the processor
+/// compares to decide whether a load may depend on an earlier store ("4K
+/// aliasing"): every colour load waited for the depth store just before it.
+fn skew(depth: &[f32], color: &[i32]) -> usize {
+    let apart = (depth.as_ptr() as usize).wrapping_sub(color.as_ptr() as usize) % 4096;
+    // Bytes to add to the colour's address: half a page past the depth's.
+    let shift = (apart + 2048) % 4096;
+    shift / 4
 }
 
 /// Rows `y0..y1` of the image: the band with index `band`.

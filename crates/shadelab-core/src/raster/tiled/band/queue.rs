@@ -144,13 +144,15 @@ impl Band {
                 let start = at[0] as usize;
                 s.i_store(
                     colors.0,
-                    (&mut self.color[start..start + 8]).try_into().unwrap(),
+                    (&mut self.color[self.color_at + start..][..8])
+                        .try_into()
+                        .unwrap(),
                 );
             } else {
                 let mut values = [0i32; 8];
                 s.i_store(colors.0, &mut values);
                 for i in 0..n {
-                    self.color[at[i] as usize] = values[i];
+                    self.color[self.color_at + at[i] as usize] = values[i];
                 }
             }
         }
