@@ -43,7 +43,7 @@ if [ "${MESA25:-1}" != 0 ]; then
 fi
 
 cargo build --release --locked -q >&2
-bin=target/release/shadelab
+bin=${CARGO_TARGET_DIR:-target}/release/shadelab
 select=(--model "${MODELS:-bunny,dragon,quad}")
 [ -n "${SIZES:-}" ] && select+=(--size "$SIZES")
 rm -rf "$out/scenes"

@@ -74,6 +74,20 @@ fn check_equivalent(name: &str, scene: &Scene, options: &RenderOptions) -> Resul
         .map_err(|e| e.to_string())?;
     within_one(&format!("{name}-tiled"), &expected, &actual)?;
     within_one(&format!("{name}-portable"), &actual, &fallback)?;
+    // The other x86 levels compile the same intrinsics: the same bytes.
+    for level in SimdLevel::supported().filter(|&l| l != SimdLevel::Portable) {
+        let mut other = expected.clone();
+        Renderer::with_simd(level)
+            .render_into(scene, &tiled, &mut other)
+            .map_err(|e| e.to_string())?;
+        if other != actual {
+            return Err(format!(
+                "{name}: {} and {} differ",
+                level.name(),
+                best.simd().name()
+            ));
+        }
+    }
     let counts = |s: shadelab_core::RenderStats| {
         (
             s.polygons,

@@ -486,7 +486,7 @@ mod tests {
     /// rounding, on every SIMD level this machine has.
     #[test]
     fn lanes_agree_with_the_scalar_model() {
-        for level in [SimdLevel::Portable, SimdLevel::detect()] {
+        for level in SimdLevel::supported() {
             for lighting in &lightings() {
                 for specular in [true, false] {
                     dispatch(level, Compare { lighting, specular });

@@ -20,6 +20,15 @@ impl Avx2 {
     }
 }
 
+/// Whether the CPU also has AVX-512 F, VL, BW and DQ, for
+/// [`super::SimdLevel::Avx512`] (the AVX2 lanes compiled with them).
+pub(crate) fn has_avx512() -> bool {
+    std::is_x86_feature_detected!("avx512f")
+        && std::is_x86_feature_detected!("avx512vl")
+        && std::is_x86_feature_detected!("avx512bw")
+        && std::is_x86_feature_detected!("avx512dq")
+}
+
 // Every method below calls AVX/AVX2 intrinsics. SAFETY (for each
 // `unsafe` block in this impl): `self` is an `Avx2`, which only
 // `Avx2::new` creates after checking that the CPU has AVX2 and FMA;

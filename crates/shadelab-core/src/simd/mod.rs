@@ -14,7 +14,13 @@
 //!
 //! [`dispatch`] runs a [`Kernel`] with the best backend inside a
 //! `#[target_feature(enable = "avx2,fma")]` function, so that the inlined
-//! intrinsics compile to VEX code. Both backends compute in IEEE single
+//! intrinsics compile to VEX code. Where the CPU also has AVX-512 (F, VL,
+//! BW, DQ), the same AVX2 backend is compiled a second time with those
+//! features enabled ([`SimdLevel::Avx512`]): the lanes stay 8 wide, but the
+//! compiler gets 32 vector registers instead of 16 (the inner loops spilled
+//! plane values to the stack), mask registers for compares and blends, and
+//! three-operand logic. The intrinsics are the same, so the results are
+//! bit for bit those of [`SimdLevel::Avx2`] (a test checks it). Both backends compute in IEEE single
 //! precision; they differ in the last bits only, where AVX2 fuses
 //! multiply-adds and uses its reciprocal estimates refined by a Newton step
 //! (22+ bits instead of an exact division, which costs 5–10 times more), so
@@ -36,33 +42,46 @@ pub enum SimdLevel {
     Portable,
     /// 8-lane AVX2 (x86-64 only, chosen when the CPU has it).
     Avx2,
+    /// The AVX2 lanes compiled for AVX-512 (F, VL, BW, DQ): same results,
+    /// more registers (x86-64 only, chosen when the CPU has it).
+    Avx512,
 }
 
 impl SimdLevel {
     /// The best level this CPU supports.
     pub fn detect() -> SimdLevel {
-        #[cfg(target_arch = "x86_64")]
-        {
-            if avx2::Avx2::new().is_some() {
-                return SimdLevel::Avx2;
-            }
-        }
-        SimdLevel::Portable
+        SimdLevel::supported().last().unwrap_or(SimdLevel::Portable)
+    }
+
+    /// Every level, from the plainest.
+    pub const ALL: [SimdLevel; 3] = [SimdLevel::Portable, SimdLevel::Avx2, SimdLevel::Avx512];
+
+    /// The levels this CPU can run, from the plainest.
+    pub fn supported() -> impl Iterator<Item = SimdLevel> {
+        SimdLevel::ALL
+            .into_iter()
+            .filter(|level| level.is_supported())
     }
 
     /// Whether this CPU can run this level.
     pub fn is_supported(self) -> bool {
         match self {
             SimdLevel::Portable => true,
-            SimdLevel::Avx2 => SimdLevel::detect() == SimdLevel::Avx2,
+            #[cfg(target_arch = "x86_64")]
+            SimdLevel::Avx2 => avx2::Avx2::new().is_some(),
+            #[cfg(target_arch = "x86_64")]
+            SimdLevel::Avx512 => avx2::Avx2::new().is_some() && avx2::has_avx512(),
+            #[cfg(not(target_arch = "x86_64"))]
+            SimdLevel::Avx2 | SimdLevel::Avx512 => false,
         }
     }
 
-    /// "avx2" or "portable".
+    /// "portable", "avx2" or "avx512".
     pub fn name(self) -> &'static str {
         match self {
             SimdLevel::Portable => "portable",
             SimdLevel::Avx2 => "avx2",
+            SimdLevel::Avx512 => "avx512",
         }
     }
 }
@@ -84,7 +103,20 @@ pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, kernel: K) -> K::Output {
         unsafe fn with_avx2<K: Kernel>(kernel: K, simd: avx2::Avx2) -> K::Output {
             kernel.run(simd)
         }
-        if level == SimdLevel::Avx2 {
+        #[target_feature(enable = "avx2,fma,popcnt,bmi1,bmi2,avx512f,avx512vl,avx512bw,avx512dq")]
+        unsafe fn with_avx512<K: Kernel>(kernel: K, simd: avx2::Avx2) -> K::Output {
+            kernel.run(simd)
+        }
+        if level == SimdLevel::Avx512 {
+            if let (Some(simd), true) = (avx2::Avx2::new(), avx2::has_avx512()) {
+                // SAFETY: the CPU has AVX2, FMA, POPCNT, BMI1 and BMI2
+                // (`Avx2::new` succeeded) and AVX-512 F, VL, BW and DQ
+                // (`has_avx512`), the only requirement of a `target_feature`
+                // function.
+                return unsafe { with_avx512(kernel, simd) };
+            }
+        }
+        if level == SimdLevel::Avx2 || level == SimdLevel::Avx512 {
             if let Some(simd) = avx2::Avx2::new() {
                 // SAFETY: `Avx2::new` succeeded, so the CPU has AVX2, FMA,
                 // POPCNT, BMI1 and BMI2, the only requirement of a

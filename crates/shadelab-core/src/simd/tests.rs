@@ -14,7 +14,7 @@ impl Kernel for Pow {
 
 #[test]
 fn pow_unit_matches_powf() {
-    for level in [SimdLevel::Portable, SimdLevel::detect()] {
+    for level in SimdLevel::supported() {
         for p in [0.5f32, 1.0, 2.0, 7.5, 32.0, 128.0, 1000.0] {
             let mut worst = 0f32;
             for k in 0..=500 {
@@ -84,7 +84,7 @@ impl Kernel for Bytes {
 #[test]
 fn to_bytes_truncates_and_saturates() {
     let v = [0.49, 0.5, 254.99, 255.5, 256.0, -3.0, f32::NAN, 3e9];
-    for level in [SimdLevel::Portable, SimdLevel::detect()] {
+    for level in SimdLevel::supported() {
         let got = dispatch(level, Bytes(v));
         let want = v.map(|r| {
             let byte = |c: f32| {
@@ -104,7 +104,7 @@ fn to_bytes_truncates_and_saturates() {
 
 #[test]
 fn lane_operations() {
-    for level in [SimdLevel::Portable, SimdLevel::detect()] {
+    for level in SimdLevel::supported() {
         let (packed, bits, and, above) = dispatch(level, Lanes);
         assert_eq!(packed[..4], [1.0, 2.0, 5.0, 7.0], "{level:?}");
         assert_eq!((bits, and), (0b1010_0110, 0b1010_0110), "{level:?}");
