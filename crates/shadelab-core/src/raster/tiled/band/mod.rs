@@ -366,8 +366,14 @@ impl Band {
                 if inside.mask_bits() != 0 {
                     let x = first_block + block * 8;
                     let row = *row.get_or_insert_with(|| f.row(y));
-                    fragments +=
-                        self.block::<S, Sh, true>(s, f, inside, row_start + x as usize, x, &row);
+                    fragments += if Sh::DEFERRED {
+                        self.block::<S, Sh, true>(s, f, inside, row_start + x as usize, x, &row)
+                    } else {
+                        // As in `walk_spans`: the buffers' addresses in registers.
+                        let (depth, color) = self.row_buffers(row_start + x as usize, 8);
+                        let (depth, color) = (depth.try_into(), color.try_into());
+                        shade_block(s, f, inside, x, &row, depth.unwrap(), color.unwrap())
+                    };
                 }
             }
             for i in 0..3 {
@@ -608,13 +614,11 @@ fn shade_block<S: Simd, Sh: Shader>(
     let colors = f
         .shader
         .shade(f.shader_lanes, s, f.t.color, f.t.flip, &attrs);
-    if bits == 0xff {
-        // A whole block: nothing to keep.
-        s.i_store(colors.0, color_slot);
-    } else {
-        let old = Vi(s.i_load(color_slot), s);
-        s.i_store(Vi::select(pass, colors, old).0, color_slot);
-    }
+    // Always blended, even for a whole block: a branch on it is
+    // mispredicted on meshes whose blocks are partly covered at random
+    // (12 % of the teapot's 1920×1080 flat frame).
+    let old = Vi(s.i_load(color_slot), s);
+    s.i_store(Vi::select(pass, colors, old).0, color_slot);
     bits.count_ones()
 }
 
