@@ -3,14 +3,19 @@
 //! The tiled rasterizer works on blocks of 8 pixels. Its hot code is written
 //! once, generic over a [`Simd`] backend, with the lane types [`Vf`] (8 ×
 //! f32) and [`Vi`] (8 × i32, also used as lane masks) giving it ordinary
-//! operators. Two backends exist:
+//! operators. Three backends exist:
 //!
 //! * [`Portable`]: arrays of 8 and loops, plain safe Rust that compiles for
 //!   any target (LLVM vectorizes some of it: SSE2, or `simd128` on
 //!   WebAssembly when enabled);
 //! * [`Avx2`] (x86-64): one AVX2 instruction per operation. A value of this
 //!   type exists only once the CPU is known to have AVX2 and FMA, which is
-//!   what makes its `unsafe` intrinsic calls sound.
+//!   what makes its `unsafe` intrinsic calls sound;
+//! * `Wasm128` (WebAssembly built with `+simd128`, as the viewer's module
+//!   is): two 128-bit instructions per operation, chosen at compile time
+//!   (a WebAssembly module cannot ask its host what it supports: one built
+//!   with `simd128` does not load without it). It computes exactly what
+//!   the portable backend computes, which LLVM vectorizes only in part.
 //!
 //! [`dispatch`] runs a [`Kernel`] with the best backend inside a
 //! `#[target_feature(enable = "avx2,fma")]` function, so that the inlined
@@ -24,6 +29,8 @@
 #[cfg(target_arch = "x86_64")]
 mod avx2;
 mod portable;
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+mod wasm128;
 
 use std::ops::{Add, BitAnd, BitOr, Mul, Sub};
 
@@ -36,6 +43,9 @@ pub enum SimdLevel {
     Portable,
     /// 8-lane AVX2 (x86-64 only, chosen when the CPU has it).
     Avx2,
+    /// Two 4-lane WebAssembly `simd128` vectors (only in a module built
+    /// with `+simd128`, where it is always chosen).
+    Simd128,
 }
 
 impl SimdLevel {
@@ -47,6 +57,9 @@ impl SimdLevel {
                 return SimdLevel::Avx2;
             }
         }
+        if cfg!(all(target_arch = "wasm32", target_feature = "simd128")) {
+            return SimdLevel::Simd128;
+        }
         SimdLevel::Portable
     }
 
@@ -54,15 +67,16 @@ impl SimdLevel {
     pub fn is_supported(self) -> bool {
         match self {
             SimdLevel::Portable => true,
-            SimdLevel::Avx2 => SimdLevel::detect() == SimdLevel::Avx2,
+            level => SimdLevel::detect() == level,
         }
     }
 
-    /// "avx2" or "portable".
+    /// "portable", "avx2" or "simd128".
     pub fn name(self) -> &'static str {
         match self {
             SimdLevel::Portable => "portable",
             SimdLevel::Avx2 => "avx2",
+            SimdLevel::Simd128 => "simd128",
         }
     }
 }
@@ -91,6 +105,12 @@ pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, kernel: K) -> K::Output {
                 // `target_feature` function.
                 return unsafe { with_avx2(kernel, simd) };
             }
+        }
+    }
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    {
+        if level == SimdLevel::Simd128 {
+            return kernel.run(wasm128::Wasm128);
         }
     }
     let _ = level;
