@@ -3,14 +3,19 @@
 //! The tiled rasterizer works on blocks of 8 pixels. Its hot code is written
 //! once, generic over a [`Simd`] backend, with the lane types [`Vf`] (8 ×
 //! f32) and [`Vi`] (8 × i32, also used as lane masks) giving it ordinary
-//! operators. Two backends exist:
+//! operators. Three backends exist:
 //!
 //! * [`Portable`]: arrays of 8 and loops, plain safe Rust that compiles for
 //!   any target (LLVM vectorizes some of it: SSE2, or `simd128` on
 //!   WebAssembly when enabled);
 //! * [`Avx2`] (x86-64): one AVX2 instruction per operation. A value of this
 //!   type exists only once the CPU is known to have AVX2 and FMA, which is
-//!   what makes its `unsafe` intrinsic calls sound.
+//!   what makes its `unsafe` intrinsic calls sound;
+//! * `Wasm128` (WebAssembly built with `+simd128`, as the viewer's module
+//!   is): two 128-bit instructions per operation, chosen at compile time
+//!   (a WebAssembly module cannot ask its host what it supports: one built
+//!   with `simd128` does not load without it). It computes exactly what
+//!   the portable backend computes, which LLVM vectorizes only in part.
 //!
 //! [`dispatch`] runs a [`Kernel`] with the best backend inside a
 //! `#[target_feature(enable = "avx2,fma")]` function, so that the inlined
@@ -20,8 +25,10 @@
 //! compiler gets 32 vector registers instead of 16 (the inner loops spilled
 //! plane values to the stack), mask registers for compares and blends, and
 //! three-operand logic. The intrinsics are the same, so the results are
-//! bit for bit those of [`SimdLevel::Avx2`] (a test checks it). Both backends compute in IEEE single
-//! precision; they differ in the last bits only, where AVX2 fuses
+//! bit for bit those of [`SimdLevel::Avx2`] (a test checks it).
+//!
+//! All backends compute in IEEE single precision; the x86 ones differ from
+//! the portable one in the last bits only, where AVX2 fuses
 //! multiply-adds and uses its reciprocal estimates refined by a Newton step
 //! (22+ bits instead of an exact division, which costs 5–10 times more), so
 //! colours agree within 1/255. Tests check both, and
@@ -30,6 +37,8 @@
 #[cfg(target_arch = "x86_64")]
 mod avx2;
 mod portable;
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+mod wasm128;
 
 use std::ops::{Add, BitAnd, BitOr, Mul, Sub};
 
@@ -45,6 +54,9 @@ pub enum SimdLevel {
     /// The AVX2 lanes compiled for AVX-512 (F, VL, BW, DQ): same results,
     /// more registers (x86-64 only, chosen when the CPU has it).
     Avx512,
+    /// Two 4-lane WebAssembly `simd128` vectors (only in a module built
+    /// with `+simd128`, where it is always chosen).
+    Simd128,
 }
 
 impl SimdLevel {
@@ -54,7 +66,12 @@ impl SimdLevel {
     }
 
     /// Every level, from the plainest.
-    pub const ALL: [SimdLevel; 3] = [SimdLevel::Portable, SimdLevel::Avx2, SimdLevel::Avx512];
+    pub const ALL: [SimdLevel; 4] = [
+        SimdLevel::Portable,
+        SimdLevel::Simd128,
+        SimdLevel::Avx2,
+        SimdLevel::Avx512,
+    ];
 
     /// The levels this CPU can run, from the plainest.
     pub fn supported() -> impl Iterator<Item = SimdLevel> {
@@ -73,15 +90,17 @@ impl SimdLevel {
             SimdLevel::Avx512 => avx2::Avx2::new().is_some() && avx2::has_avx512(),
             #[cfg(not(target_arch = "x86_64"))]
             SimdLevel::Avx2 | SimdLevel::Avx512 => false,
+            SimdLevel::Simd128 => cfg!(all(target_arch = "wasm32", target_feature = "simd128")),
         }
     }
 
-    /// "portable", "avx2" or "avx512".
+    /// "portable", "avx2", "avx512" or "simd128".
     pub fn name(self) -> &'static str {
         match self {
             SimdLevel::Portable => "portable",
             SimdLevel::Avx2 => "avx2",
             SimdLevel::Avx512 => "avx512",
+            SimdLevel::Simd128 => "simd128",
         }
     }
 }
@@ -123,6 +142,12 @@ pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, kernel: K) -> K::Output {
                 // `target_feature` function.
                 return unsafe { with_avx2(kernel, simd) };
             }
+        }
+    }
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    {
+        if level == SimdLevel::Simd128 {
+            return kernel.run(wasm128::Wasm128);
         }
     }
     let _ = level;

@@ -111,3 +111,37 @@ fn lane_operations() {
         assert_eq!(above, [0, 0, 0, -1, -1, -1, -1, -1], "{level:?}");
     }
 }
+
+struct Compress(u32);
+
+impl Kernel for Compress {
+    type Output = ([f32; 8], [i32; 8]);
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> ([f32; 8], [i32; 8]) {
+        let (mut f, mut i) = ([0.0; 8], [0; 8]);
+        Vf::lanes(s).compress(self.0).store(&mut f);
+        s.i_store((Vi::ramp(s) * Vi::splat(s, -3)).compress(self.0).0, &mut i);
+        (f, i)
+    }
+}
+
+/// Every mask packs the same lanes in every backend (the best one here is
+/// AVX2 natively, `simd128` in a WebAssembly build with it).
+#[test]
+fn compress_every_mask() {
+    for bits in 0..256u32 {
+        let n = bits.count_ones() as usize;
+        let (f, i) = dispatch(SimdLevel::detect(), Compress(bits));
+        let want: Vec<i32> = (0..8).filter(|k| bits >> k & 1 == 1).collect();
+        assert_eq!(
+            f[..n],
+            want.iter().map(|&k| k as f32).collect::<Vec<_>>()[..],
+            "{bits:#b}"
+        );
+        assert_eq!(
+            i[..n],
+            want.iter().map(|&k| -3 * k).collect::<Vec<_>>()[..],
+            "{bits:#b}"
+        );
+    }
+}

@@ -1,0 +1,68 @@
+// Times the viewer's own engine (crates/shadelab-wasm, through web/js/shadelab.js) under Node:
+//   node bench/wasm/engine.mjs MODULE.wasm [teapot|FILE.obj]...
+// MODULE.wasm is the viewer's module (target/viewer-wasm/wasm32-unknown-unknown/wasm/shadelab_wasm.wasm,
+// built by `cargo build --release`). Each method draws the page's default scene (480×480), the
+// camera turned 5° a frame as an orbit step turns it, 3 frames of warm-up, median of FRAMES (30).
+import fs from 'node:fs';
+import path from 'node:path';
+import { Shadelab } from '../../web/js/shadelab.js';
+
+const SCENE = `[model]
+source = "teapot"
+normals = "auto"
+
+[ambient]
+color = [255, 255, 255]
+intensity = 0.2
+
+[[lights]]
+kind = "point"
+position = [2.0, 2.0, 3.0]
+color = [255, 255, 255]
+intensity = 1.0
+attenuation = [1.0, 0.0, 0.0]
+
+[material]
+ka = [200, 60, 60]
+kd = [200, 60, 60]
+ks = [255, 255, 255]
+shininess = 32.0
+
+[render]
+width = 480
+height = 480
+shading = "flat"
+background = [0, 0, 0]
+cull_backfaces = true
+gouraud_specular = false
+interpolation = "perspective"
+rasterizer = "tiled"
+polygons = "fans"
+specular = "phong"
+yaw = 0.0
+pitch = 0.0
+zoom = 1.0
+`;
+const [wasm, ...models] = process.argv.slice(2);
+const module = new WebAssembly.Module(fs.readFileSync(wasm));
+const frames = Number(process.env.FRAMES ?? 30);
+for (const model of models.length ? models : ['teapot']) {
+  const engine = await Shadelab.create(module);
+  let source = 'teapot';
+  if (model !== 'teapot') {
+    source = path.basename(model);
+    engine.loadFile(source, fs.readFileSync(model));
+  }
+  const row = [];
+  for (const method of ['flat', 'gouraud', 'phong']) {
+    const scene = SCENE.replace('source = "teapot"', `source = ${JSON.stringify(source)}`).replace('shading = "flat"', `shading = "${method}"`);
+    const times = [];
+    for (let i = 0; i < frames + 3; i++) {
+      const frame = engine.render(scene.replace('yaw = 0.0', `yaw = ${(i * 5) % 360}.0`));
+      if (i >= 3) times.push(frame.ms);
+    }
+    times.sort((a, b) => a - b);
+    row.push(`${method} ${times[times.length >> 1].toFixed(2)} ms`);
+  }
+  console.log(source.padEnd(20), row.join('  '));
+}
