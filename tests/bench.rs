@@ -47,7 +47,9 @@ fn json_has_one_row_per_combination() {
     assert!(json["machine"]["cpu"].is_string());
     assert!(json["machine"]["cores"].as_u64().unwrap() >= 1);
     let simd = json["machine"]["simd"].as_str().unwrap();
-    assert!(["avx2", "portable"].contains(&simd), "{simd}");
+    // The level this machine's renderer chose, by its name.
+    let best = shadelab_core::SimdLevel::detect().name();
+    assert_eq!(simd, best);
     // Measured: some hundreds of MHz at the very least, on anything that runs this.
     let clock = json["machine"]["clock_mhz"].as_f64().unwrap();
     assert!((100.0..20_000.0).contains(&clock), "{clock}");
