@@ -366,14 +366,8 @@ impl Band {
                 if inside.mask_bits() != 0 {
                     let x = first_block + block * 8;
                     let row = *row.get_or_insert_with(|| f.row(y));
-                    fragments += if Sh::DEFERRED {
-                        self.block::<S, Sh, true>(s, f, inside, row_start + x as usize, x, &row)
-                    } else {
-                        // As in `walk_spans`: the buffers' addresses in registers.
-                        let (depth, color) = self.row_buffers(row_start + x as usize, 8);
-                        let (depth, color) = (depth.try_into(), color.try_into());
-                        shade_block(s, f, inside, x, &row, depth.unwrap(), color.unwrap())
-                    };
+                    fragments +=
+                        self.block::<S, Sh, true>(s, f, inside, row_start + x as usize, x, &row);
                 }
             }
             for i in 0..3 {
