@@ -16,7 +16,7 @@ fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
 
-const TINY: [&str; 8] = [
+const TINY: [&str; 9] = [
     "bench",
     "--size",
     "40x30",
@@ -25,6 +25,7 @@ const TINY: [&str; 8] = [
     "--warmup",
     "0",
     "--budget=0",
+    "--warmup-time=0",
 ];
 
 #[test]
@@ -53,6 +54,8 @@ fn json_has_one_row_per_combination() {
     // Measured: some hundreds of MHz at the very least, on anything that runs this.
     let clock = json["machine"]["clock_mhz"].as_f64().unwrap();
     assert!((100.0..20_000.0).contains(&clock), "{clock}");
+    assert_eq!(json["warmup"].as_u64(), Some(0));
+    assert_eq!(json["warmup_s"].as_f64(), Some(0.0));
     let rows = json["rows"].as_array().unwrap();
     assert_eq!(
         rows.len(),
@@ -179,11 +182,32 @@ fn bad_filters_are_input_errors() {
         ["--model", "cow"],
         ["--threads", "0"],
         ["--shading", "toon"],
+        ["--simd", "sse9"],
     ] {
         let mut args = TINY.to_vec();
         args.extend(bad);
         let out = shadelab(&args);
         assert_eq!(out.status.code(), Some(2), "{bad:?}: {}", text(&out.stderr));
+    }
+}
+
+#[test]
+fn simd_chooses_the_level_and_refuses_one_the_cpu_lacks() {
+    use shadelab_core::SimdLevel;
+    for level in SimdLevel::ALL {
+        let mut args = TINY.to_vec();
+        args.extend(["--json", "--model", "quad", "--simd", level.name()]);
+        let out = shadelab(&args);
+        if level.is_supported() {
+            assert!(out.status.success(), "{level}: {}", text(&out.stderr));
+            let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+            assert_eq!(json["machine"]["simd"], level.name());
+        } else {
+            // simd128 outside WebAssembly, AVX-512 on most desktops.
+            assert_eq!(out.status.code(), Some(2), "{level}");
+            let err = text(&out.stderr);
+            assert!(err.contains("cannot run") && err.contains("portable"), "{err}");
+        }
     }
 }
 

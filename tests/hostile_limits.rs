@@ -197,7 +197,7 @@ fn quad_angles_are_validated() {
 }
 
 /// `bench` flags for one quick row of 8×8 pixels.
-const QUICK_BENCH: [&str; 12] = [
+const QUICK_BENCH: [&str; 13] = [
     "--size",
     "8x8",
     "--shading",
@@ -210,6 +210,7 @@ const QUICK_BENCH: [&str; 12] = [
     "1",
     "--warmup",
     "0",
+    "--warmup-time=0",
 ];
 
 #[test]
@@ -222,6 +223,11 @@ fn nothing_panics_on_odd_environments_and_outputs() {
         args.extend_from_slice(&["--budget", budget]);
         let out = run(dir.path(), &args);
         assert_input_error(&out, &["--budget", "0..=3600"]);
+        // QUICK_BENCH without its own "--warmup-time=0".
+        let mut args = bench[..bench.len() - 1].to_vec();
+        args.extend_from_slice(&["--warmup-time", budget]);
+        let out = run(dir.path(), &args);
+        assert_input_error(&out, &["--warmup-time", "0..=3600"]);
     }
     for threads in ["5000", "many", "-1"] {
         let out = command(dir.path(), &["render", "--size", "16x16", "-o", "o.png"])

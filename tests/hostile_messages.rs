@@ -216,6 +216,8 @@ fn negative_numbers_are_told_the_range_allowed() {
         (vec!["bench", "--threads", "-2"], "1..=256"),
         (vec!["bench", "--frames", "-1"], "1..=100000"),
         (vec!["bench", "--budget", "-1"], "0..=3600"),
+        (vec!["bench", "--warmup-time", "-1"], "0..=3600"),
+        (vec!["bench", "--warmup-time", "nan"], "0..=3600"),
         (vec!["bench", "--size", "-5x5"], "1..=16384"),
     ] {
         let out = run(dir.path(), &args);

@@ -242,12 +242,15 @@ class Llvmpipe:
         vao.render(self.gl.TRIANGLES)
         self.ctx.finish()
 
-    def time(self, scene, shading, frames, warmup, budget):
-        """Median ms per frame, and the last frame's pixels (top row first)."""
+    def time(self, scene, shading, frames, warmup, warmup_time, budget):
+        """Median ms per frame, and the last frame's pixels (top row first).
+        Warm-up: `warmup` frames and at least `warmup_time` seconds, as shadelab's."""
         fbo, vao = self.prepare(scene, shading)
         background = [v / 255.0 for v in scene.info["background"]]
-        for _ in range(warmup):
+        warm, start = 0, time.perf_counter()
+        while warm < warmup or time.perf_counter() - start < warmup_time:
             self.frame(fbo, vao, background)
+            warm += 1
         times = []
         start = time.perf_counter()
         while len(times) < frames and (len(times) < 3 or time.perf_counter() - start < budget):
@@ -274,7 +277,8 @@ def worker(scenes_dir):
         if stem not in scenes:
             scenes = {stem: Scene(scenes_dir, stem)}  # one scene's arrays at a time
         ms, pixels = gl.time(
-            scenes[stem], request["shading"], request["frames"], request["warmup"], request["budget"]
+            scenes[stem], request["shading"], request["frames"], request["warmup"],
+            request["warmup_time"], request["budget"],
         )
         Image.fromarray(np.ascontiguousarray(pixels)).save(request["image"])
         print(json.dumps({"ms": ms}), file=out, flush=True)
@@ -335,11 +339,12 @@ def parse_exports(path):
     return exports
 
 
-def shadelab_times(binary, model, size, shading, frames, models_dir):
+def shadelab_times(binary, model, size, shading, frames, warmup, warmup_time, models_dir):
     """Rows of `shadelab bench --json` for 1 and 2 threads, and its machine."""
     command = [
         str(binary), "bench", "--json", "--rasterizer", "tiled", "--threads", "1,2",
         "--model", model, "--size", size, "--shading", shading, "--frames", str(frames),
+        "--warmup", str(warmup), "--warmup-time", str(warmup_time),
     ]
     if models_dir:
         command += ["--models-dir", str(models_dir)]
@@ -402,7 +407,11 @@ def main():
     )
     parser.add_argument("--models-dir", type=Path)
     parser.add_argument("--frames", type=int, default=31)
-    parser.add_argument("--warmup", type=int, default=3)
+    parser.add_argument("--warmup", type=int, default=3, help="warm-up frames per row, at least")
+    parser.add_argument(
+        "--warmup-time", type=float, default=0.25,
+        help="warm-up seconds per row, at least (a pool that was idle runs slowly at first)",
+    )
     parser.add_argument("--budget", type=float, default=3.0, help="seconds per llvmpipe row at most")
     parser.add_argument(
         "--rounds", type=int, default=3,
@@ -439,11 +448,13 @@ def main():
                     rounds.append(
                         mesa.time(
                             stem=stem, shading=shading, frames=args.frames, warmup=args.warmup,
+                            warmup_time=args.warmup_time,
                             budget=args.budget, image=str(image),
                         )
                     )
                 ours, machine = shadelab_times(
-                    args.shadelab, model, size, shading, args.frames, args.models_dir
+                    args.shadelab, model, size, shading, args.frames, args.warmup, args.warmup_time,
+                    args.models_dir,
                 )
                 ours_rounds.append(ours)
             ours_pixels = np.asarray(Image.open(ours_png).convert("RGB")).astype(int)
@@ -495,7 +506,8 @@ def report(args, mesas, rows, machine, started, load_before, load_after):
     for m in mesas:
         p(f"{m.name}: `{m.renderer}`, OpenGL {m.version}, LP_NUM_THREADS={m.threads}.")
     p(
-        f"Command: `{args.command}`. Median ms per frame of up to {args.frames} frames after {args.warmup} warm-up;"
+        f"Command: `{args.command}`. Median ms per frame of up to {args.frames} frames after at least {args.warmup} warm-up frames"
+        f" and {args.warmup_time} s of them (each side);"
         f" each row measured in {args.rounds} alternating rounds ({', '.join(m.name for m in mesas)}, then shadelab),"
         " the median round of each kept."
     )

@@ -8,7 +8,7 @@ const fs = require("fs");
 const path = require("path");
 const [file, size = "480x480", count = "30", ...models] = process.argv.slice(2);
 const [w, h] = size.split("x").map(Number);
-const LEVELS = ["portable", "avx2", "simd128"];
+const LEVELS = ["portable", "avx2", "simd128", "avx512"];
 const instance = new WebAssembly.Instance(new WebAssembly.Module(fs.readFileSync(file)), {});
 const e = instance.exports;
 const best = e.level();

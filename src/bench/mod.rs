@@ -2,8 +2,9 @@
 //!
 //! Every row renders one standard scene (a model framed by the standard
 //! camera, see [`standard_scene`]) at one size, with one shading method, one
-//! rasterizer and a rayon pool of a given number of threads. A few warm-up
-//! frames fill the caches and the renderer's reusable buffers; then frames
+//! rasterizer and a rayon pool of a given number of threads. Warm-up frames
+//! (a few, and for at least `--warmup-time`) fill the caches and the
+//! renderer's reusable buffers and wake the pool's threads; then frames
 //! are timed one by one (until `--frames` are done or the row's time budget
 //! is spent) and the median is reported, with the covered pixels and the
 //! mesh's triangles per second at that median, and the processor cycles
@@ -23,7 +24,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use shadelab_core::limits::{MAX_BENCH_BUDGET_SECONDS, MAX_THREADS, RENDER_BYTES_PER_PIXEL};
-use shadelab_core::{Image, Rasterizer, RenderOptions, Renderer, Scene, Shading};
+use shadelab_core::{Image, Rasterizer, RenderOptions, Renderer, Scene, Shading, SimdLevel};
 
 use crate::cli::whole;
 use crate::{input_error, output_error, Failure};
@@ -57,12 +58,20 @@ pub struct BenchArgs {
     /// Timed frames per row (fewer if the row's time budget runs out first).
     #[arg(long, default_value_t = 31, value_parser = whole::<u32, 1, 100_000>, allow_hyphen_values = true)]
     pub frames: u32,
-    /// Untimed frames before timing.
+    /// Untimed frames before timing (at least this many, and for at least --warmup-time).
     #[arg(long, default_value_t = 3, value_parser = whole::<u32, 0, 100_000>, allow_hyphen_values = true)]
     pub warmup: u32,
+    /// Untimed warm-up per row, seconds, at least: a thread pool that has just been idle
+    /// (the row before ran on another pool) can take tens of milliseconds to run at full
+    /// speed again, which a few warm-up frames do not cover.
+    #[arg(long, default_value_t = 0.25, allow_negative_numbers = true)]
+    pub warmup_time: f64,
     /// Time budget per row, seconds (at least 3 frames are timed whatever it is).
     #[arg(long, default_value_t = 3.0, allow_negative_numbers = true)]
     pub budget: f64,
+    /// The tiled rasterizer's SIMD level; default: the best this CPU has.
+    #[arg(long, value_parser = crate::cli::choice::<SimdLevel>())]
+    pub simd: Option<SimdLevel>,
     /// Where the bunny and dragon meshes are; default ../shared/models.
     #[arg(long)]
     pub models_dir: Option<PathBuf>,
@@ -165,10 +174,22 @@ impl Row {
 
 /// Runs `shadelab bench`.
 pub fn run(args: &BenchArgs) -> Result<(), Failure> {
-    if !(args.budget.is_finite() && (0.0..=MAX_BENCH_BUDGET_SECONDS).contains(&args.budget)) {
+    for (flag, seconds) in [
+        ("--budget", args.budget),
+        ("--warmup-time", args.warmup_time),
+    ] {
+        if !(seconds.is_finite() && (0.0..=MAX_BENCH_BUDGET_SECONDS).contains(&seconds)) {
+            return Err(input_error(anyhow::anyhow!(
+                "{flag} must be a number of seconds in 0..={MAX_BENCH_BUDGET_SECONDS}, got {seconds}"
+            )));
+        }
+    }
+    let simd = args.simd.unwrap_or_else(SimdLevel::detect);
+    if !simd.is_supported() {
+        let can: Vec<&str> = SimdLevel::supported().map(SimdLevel::name).collect();
         return Err(input_error(anyhow::anyhow!(
-            "--budget must be a number of seconds in 0..={MAX_BENCH_BUDGET_SECONDS}, got {}",
-            args.budget
+            "--simd {simd}: this CPU cannot run it (it can run {})",
+            can.join(", ")
         )));
     }
     let selected = or_all(&args.model, &BenchModel::ALL);
@@ -203,14 +224,14 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
             .map_err(output_error)?;
         pools.push((n, pool));
     }
-    let machine = Machine::detect();
+    let machine = Machine::detect(simd);
     let mut out = std::io::stdout().lock();
     if !args.json {
         let mut heading = || -> std::io::Result<()> {
             writeln!(
                 out,
-                "shadelab bench: {} ({} cores, clock {:.0} MHz measured), tiled rasterizer SIMD {}; median of up to {} frames after {} warm-up",
-                machine.cpu, machine.cores, machine.clock_mhz, machine.simd, args.frames, args.warmup
+                "shadelab bench: {} ({} cores, clock {:.0} MHz measured), tiled rasterizer SIMD {}; median of up to {} frames after {} warm-up frames and at least {} s of them",
+                machine.cpu, machine.cores, machine.clock_mhz, machine.simd, args.frames, args.warmup, args.warmup_time
             )?;
             for m in &models {
                 writeln!(
@@ -241,7 +262,8 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
                 for &rasterizer in &rasterizers {
                     for (threads, pool) in &pools {
                         let options = options(width, height, shading, rasterizer);
-                        let row = time_row(args, pool, &scene, &options).map_err(input_error)?;
+                        let row =
+                            time_row(args, pool, simd, &scene, &options).map_err(input_error)?;
                         let row = Row {
                             model: model.kind.name(),
                             triangles,
@@ -280,17 +302,28 @@ fn options(width: u32, height: u32, shading: Shading, rasterizer: Rasterizer) ->
 }
 
 /// Times one row: warm-up, then frames until the count or the budget is reached.
+///
+/// The warm-up is timed as well as counted: on a virtual machine, the first
+/// tens of milliseconds on a pool whose threads were idle (the row before
+/// ran on the 1-thread pool) ran at about one thread's speed, so a 31-frame
+/// row's median mixed the two (bunny 512² flat, 2 threads: 2.6 ms with 3
+/// warm-up frames, 1.45 ms after 40).
 fn time_row(
     args: &BenchArgs,
     pool: &rayon::ThreadPool,
+    simd: SimdLevel,
     scene: &Scene,
     options: &RenderOptions,
 ) -> anyhow::Result<Row> {
-    let mut renderer = Renderer::new();
+    let mut renderer = Renderer::with_simd(simd);
     let mut image = Image::filled(options.width, options.height, options.background);
     let mut stats = Default::default();
-    for _ in 0..args.warmup {
+    let warmup_time = Duration::from_secs_f64(args.warmup_time);
+    let warm = Instant::now();
+    let mut warmed = 0;
+    while warmed < args.warmup || warm.elapsed() < warmup_time {
         stats = pool.install(|| renderer.render_into(scene, options, &mut image))?;
+        warmed += 1;
     }
     let budget = Duration::from_secs_f64(args.budget.max(0.0));
     let start = Instant::now();

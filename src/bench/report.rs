@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::time::Instant;
 
-use shadelab_core::Renderer;
+use shadelab_core::SimdLevel;
 
 use super::{BenchArgs, Row};
 
@@ -18,7 +18,8 @@ pub(super) struct Machine {
 }
 
 impl Machine {
-    pub(super) fn detect() -> Machine {
+    /// This machine, with the SIMD level the rows run at.
+    pub(super) fn detect(simd: SimdLevel) -> Machine {
         let cpu = std::fs::read_to_string("/proc/cpuinfo")
             .ok()
             .and_then(|text| {
@@ -31,7 +32,7 @@ impl Machine {
         Machine {
             cpu,
             cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
-            simd: Renderer::new().simd().name(),
+            simd: simd.name(),
             clock_mhz: measure_clock_mhz(),
         }
     }
@@ -82,12 +83,13 @@ pub(super) fn json(machine: &Machine, args: &BenchArgs, rows: &[Row]) -> String 
     let mut s = String::new();
     let _ = write!(
         s,
-        "{{\"machine\":{{\"cpu\":{},\"cores\":{},\"simd\":{},\"clock_mhz\":{:.0}}},\"warmup\":{},\"frames\":{},\"rows\":[",
+        "{{\"machine\":{{\"cpu\":{},\"cores\":{},\"simd\":{},\"clock_mhz\":{:.0}}},\"warmup\":{},\"warmup_s\":{},\"frames\":{},\"rows\":[",
         quote(&machine.cpu),
         machine.cores,
         quote(machine.simd),
         machine.clock_mhz,
         args.warmup,
+        args.warmup_time,
         args.frames
     );
     for (i, r) in rows.iter().enumerate() {

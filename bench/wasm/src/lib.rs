@@ -142,12 +142,13 @@ pub extern "C" fn pixels_len() -> usize {
     })
 }
 
-/// The best SIMD level of this module: 0 portable, 1 avx2, 2 simd128.
+/// The best SIMD level of this module: 0 portable, 1 avx2, 2 simd128, 3 avx512.
 #[no_mangle]
 pub extern "C" fn level() -> u32 {
     match SimdLevel::detect() {
         SimdLevel::Portable => 0,
         SimdLevel::Avx2 => 1,
         SimdLevel::Simd128 => 2,
+        SimdLevel::Avx512 => 3,
     }
 }

@@ -38,16 +38,20 @@ pub(crate) trait Shader: Sync {
         let _ = (lanes, attrs);
         Vi::splat(s, 0)
     }
-    /// [`Shader::light`] of 16 queued fragments, as two blocks of 8.
+    /// [`Shader::light`] of `8·G` queued fragments, as `G` blocks of 8.
     #[inline(always)]
-    fn light_pair<S: Simd>(
+    fn light_groups<S: Simd, const G: usize>(
         &self,
         lanes: &Self::Lanes<S>,
         s: S,
-        a: &[Vf<S>; MAX_ATTRS],
-        b: &[Vf<S>; MAX_ATTRS],
-    ) -> [Vi<S>; 2] {
-        [self.light(lanes, s, a), self.light(lanes, s, b)]
+        a: [&[Vf<S>; MAX_ATTRS]; G],
+    ) -> [Vi<S>; G] {
+        // A loop, not `array::from_fn`: see `Surface::radiance`.
+        let mut out = [Vi::splat(s, 0); G];
+        for g in 0..G {
+            out[g] = self.light(lanes, s, a[g]);
+        }
+        out
     }
     /// Colours of 8 fragments of one triangle, packed `r | g << 8 | b << 16`:
     /// `color` is the triangle's flat colour (packed), `flip` −1 for a back
@@ -188,14 +192,13 @@ impl Shader for OnePointLight {
     }
 
     #[inline(always)]
-    fn light_pair<S: Simd>(
+    fn light_groups<S: Simd, const G: usize>(
         &self,
         k: &OneLightLanes<S>,
         s: S,
-        a: &[Vf<S>; MAX_ATTRS],
-        b: &[Vf<S>; MAX_ATTRS],
-    ) -> [Vi<S>; 2] {
-        self.lit_groups(k, s, 1.0, [a, b])
+        a: [&[Vf<S>; MAX_ATTRS]; G],
+    ) -> [Vi<S>; G] {
+        self.lit_groups(k, s, 1.0, a)
     }
 
     #[inline(always)]

@@ -59,19 +59,20 @@ pub enum SimdLevel {
     Simd128,
 }
 
+// Every level, from the plainest (`ALL`), with the names `shadelab bench
+// --simd` and its JSON use.
+choices!(SimdLevel, "SIMD level", {
+    Portable => "portable": "plain Rust, vectorized by the compiler where it can",
+    Simd128 => "simd128": "WebAssembly simd128 (only inside a module built with it)",
+    Avx2 => "avx2": "8-lane AVX2 and FMA (x86-64)",
+    Avx512 => "avx512": "the AVX2 lanes compiled for AVX-512 F/VL/BW/DQ (x86-64)",
+});
+
 impl SimdLevel {
     /// The best level this CPU supports.
     pub fn detect() -> SimdLevel {
         SimdLevel::supported().last().unwrap_or(SimdLevel::Portable)
     }
-
-    /// Every level, from the plainest.
-    pub const ALL: [SimdLevel; 4] = [
-        SimdLevel::Portable,
-        SimdLevel::Simd128,
-        SimdLevel::Avx2,
-        SimdLevel::Avx512,
-    ];
 
     /// The levels this CPU can run, from the plainest.
     pub fn supported() -> impl Iterator<Item = SimdLevel> {
@@ -91,16 +92,6 @@ impl SimdLevel {
             #[cfg(not(target_arch = "x86_64"))]
             SimdLevel::Avx2 | SimdLevel::Avx512 => false,
             SimdLevel::Simd128 => cfg!(all(target_arch = "wasm32", target_feature = "simd128")),
-        }
-    }
-
-    /// "portable", "avx2", "avx512" or "simd128".
-    pub fn name(self) -> &'static str {
-        match self {
-            SimdLevel::Portable => "portable",
-            SimdLevel::Avx2 => "avx2",
-            SimdLevel::Avx512 => "avx512",
-            SimdLevel::Simd128 => "simd128",
         }
     }
 }

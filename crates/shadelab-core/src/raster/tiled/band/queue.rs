@@ -1,8 +1,8 @@
 //! Phong's deferred shading in a band: the positions of fragments that
 //! passed the depth test packed into whole lanes, interpolated 8 at a time,
-//! queued, lit 16 at a time and written back in queue order (see `mod.rs`).
+//! queued, lit [`QUEUE_LIT`] at a time and written back in queue order (see `mod.rs`).
 
-use super::{interpolate, Band, Fill, Row};
+use super::{interpolate, Band, Fill, Row, LIT_GROUPS, QUEUE_LIT};
 use crate::shade::{Shader, MAX_ATTRS};
 use crate::simd::{Simd, Vf, Vi};
 
@@ -95,7 +95,7 @@ impl Band {
     }
 
     /// Appends the first `count` lanes of `attrs` (buffer indices `index`)
-    /// to the lighting queue, and lights 16 once there are 16.
+    /// to the lighting queue, and lights them once there are [`QUEUE_LIT`].
     #[inline(always)]
     pub(super) fn queue_lit<S: Simd, Sh: Shader>(
         &mut self,
@@ -112,13 +112,13 @@ impl Band {
         }
         s.i_store(index, (&mut q.at[len..len + 8]).try_into().unwrap());
         q.len = len + count;
-        if q.len >= 16 {
+        if q.len >= QUEUE_LIT {
             self.shade_queue(s, f.shader, f.shader_lanes);
         }
     }
 
-    /// Shades the first (up to) 16 queued fragments, as two blocks lit
-    /// together, and writes their colours.
+    /// Shades the first (up to) [`QUEUE_LIT`] queued fragments, as
+    /// blocks lit together, and writes their colours.
     #[inline(always)]
     pub(super) fn shade_queue<S: Simd, Sh: Shader>(
         &mut self,
@@ -127,17 +127,24 @@ impl Band {
         lanes: &Sh::Lanes<S>,
     ) {
         let q = &mut self.queue;
-        let mut first = [Vf::splat(s, 0.0); MAX_ATTRS];
-        let mut second = [Vf::splat(s, 0.0); MAX_ATTRS];
-        for k in 0..Sh::ATTRS {
-            first[k] = Vf::load(s, q.attrs[k][..8].try_into().unwrap());
-            second[k] = Vf::load(s, q.attrs[k][8..16].try_into().unwrap());
+        let mut blocks = [[Vf::splat(s, 0.0); MAX_ATTRS]; LIT_GROUPS];
+        for (g, block) in blocks.iter_mut().enumerate() {
+            for k in 0..Sh::ATTRS {
+                block[k] = Vf::load(s, q.attrs[k][8 * g..8 * g + 8].try_into().unwrap());
+            }
         }
-        let colors = shader.light_pair(lanes, s, &first, &second);
-        let count = q.len.min(16);
+        let mut refs = [&blocks[0]; LIT_GROUPS];
+        for (g, r) in refs.iter_mut().enumerate() {
+            *r = &blocks[g];
+        }
+        let colors = shader.light_groups(lanes, s, refs);
+        let count = q.len.min(QUEUE_LIT);
         for (g, colors) in colors.into_iter().enumerate() {
-            let at: &[i32; 8] = q.at[8 * g..8 * g + 8].try_into().unwrap();
             let n = count.saturating_sub(8 * g).min(8);
+            if n == 0 {
+                break;
+            }
+            let at: &[i32; 8] = q.at[8 * g..8 * g + 8].try_into().unwrap();
             let in_a_row = Vi(s.i_load(at), s).eq_bits(Vi::ramp(s) + Vi::splat(s, at[0]));
             if n == 8 && in_a_row == 0xff {
                 // Eight fragments in a row (a whole block): one store.
@@ -158,10 +165,10 @@ impl Band {
         }
         // Later fragments move to the front, keeping their order.
         for k in 0..Sh::ATTRS {
-            let rest = Vf::load(s, q.attrs[k][16..].try_into().unwrap());
+            let rest = Vf::load(s, q.attrs[k][QUEUE_LIT..].try_into().unwrap());
             rest.store((&mut q.attrs[k][..8]).try_into().unwrap());
         }
-        let rest = s.i_load(q.at[16..].try_into().unwrap());
+        let rest = s.i_load(q.at[QUEUE_LIT..].try_into().unwrap());
         s.i_store(rest, (&mut q.at[..8]).try_into().unwrap());
         q.len -= count;
     }
