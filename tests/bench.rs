@@ -206,7 +206,10 @@ fn simd_chooses_the_level_and_refuses_one_the_cpu_lacks() {
             // simd128 outside WebAssembly, AVX-512 on most desktops.
             assert_eq!(out.status.code(), Some(2), "{level}");
             let err = text(&out.stderr);
-            assert!(err.contains("cannot run") && err.contains("portable"), "{err}");
+            assert!(
+                err.contains("cannot run") && err.contains("portable"),
+                "{err}"
+            );
         }
     }
 }
