@@ -355,7 +355,7 @@ fn towards<S: Simd>(q: &[Vf<S>; 3], p: &[Vf<S>; 3]) -> [Vf<S>; 3] {
 /// round it.
 #[inline(always)]
 pub(crate) fn byte_units<S: Simd>(c: Vf<S>) -> Vf<S> {
-    c * 255.0 + c.splat_like(0.5)
+    c.mul_add(c.splat_like(255.0), c.splat_like(0.5))
 }
 
 /// Colours in [0, 1] (clamped) to packed bytes `r | g << 8 | b << 16`,
