@@ -190,19 +190,38 @@ test('Present covers at least 45 % of the screen with canvases drawn at device p
 
 test('captions say what is timed (median of the last frames) and whether Gouraud has its specular term', async () => {
   const { page, problems } = await openViewer('#model=sphere');
+  // As on two cores: panels that share a scene are drawn in one request.
+  await page.evaluate(() => window.shadelab.drawTogether(true));
   for (let i = 0; i < 12; i++) await update(page, `s.camera.yaw = ${i}`);
-  const shown = await page.evaluate(() => Object.fromEntries(window.shadelab.panels.map((p) => [p.method, {
+  // Each panel's caption and its last 9 frame times.
+  const captions = () => page.evaluate(() => Object.fromEntries(window.shadelab.panels.map((p) => [p.method, {
     label: p.figure.querySelector('.time-label').textContent,
     value: p.figure.querySelector('.time-value').textContent,
     title: p.figure.querySelector('.time').title,
     times: p.times.slice(-9),
   }])));
+  const shown = await captions();
+  // One scene, nothing else on the panels: the three were drawn in one call,
+  // and the caption says so.
   for (const m of METHODS) {
     const s = shown[m];
+    assert.equal(s.label, 'render, 3 panels at once, median of 9', m);
+    assert.equal(s.value, `${median(s.times).toFixed(1)} ms`, `${m}: the median of the last 9 frames`);
+    assert.deepEqual(s.times, shown.flat.times, `${m}: one time for the three`);
+    assert.match(s.title, /drawn in one call, sharing the geometry .* the median of the last 9 frames, in one worker\. The Cost tab times each method alone\./);
+  }
+  // With an overlay, each panel's worker draws its own method, and each caption
+  // times it alone.
+  await update(page, "s.overlays.phong = ['wireframe']");
+  for (let i = 0; i < 12; i++) await update(page, `s.camera.yaw = ${20 + i}`);
+  const apart = await captions();
+  for (const m of METHODS) {
+    const s = apart[m];
     assert.equal(s.label, 'render, median of 9', m);
     assert.equal(s.value, `${median(s.times).toFixed(1)} ms`, `${m}: the median of the last 9 frames`);
     assert.match(s.title, /in its worker, the median of the last 9 frames: reading the scene and drawing it, not the transfer/);
   }
+  await update(page, 's.overlays.phong = []');
   const variant = page.locator('.panel[data-method="gouraud"] .variant');
   assert.equal(await variant.textContent(), 'no specular term');
   assert.equal(await page.locator('.panel[data-method="flat"] .variant').count(), 0);
@@ -215,7 +234,7 @@ test('captions say what is timed (median of the last frames) and whether Gouraud
   await page.selectOption('#language', 'ru');
   await settle(page);
   assert.equal(await variant.textContent(), 'без зеркальной составляющей');
-  assert.match(await page.locator('.panel[data-method="phong"] .time-label').textContent(), /^отрисовка, медиана 9 кадров$/);
+  assert.match(await page.locator('.panel[data-method="phong"] .time-label').textContent(), /^отрисовка 3 панелей сразу, (последний кадр|медиана \d+ кадр(ов|а)?)$/);
   assert.deepEqual(problems, []);
   await page.close();
 });

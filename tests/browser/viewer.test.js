@@ -30,7 +30,7 @@ test('the page loads with no console error, offline, and all three panels draw t
   for (const m of METHODS) {
     const caption = await page.locator(`.panel[data-method="${m}"] .time-value`).textContent();
     assert.match(caption, /^\d+\.\d ms$/, `${m} shows its render time`);
-    assert.match(await page.locator(`.panel[data-method="${m}"] .time-label`).textContent(), /^render, (last frame|median of \d)$/);
+    assert.match(await page.locator(`.panel[data-method="${m}"] .time-label`).textContent(), /^render, (3 panels at once, )?(last frame|median of \d)$/);
     const line = await page.locator(`.panel[data-method="${m}"] .stats`).textContent();
     assert.match(line, /lighting evaluations/);
   }
@@ -309,6 +309,8 @@ test('a file is parsed once: one panel parses it, the others take its mesh, and 
     assert.ok(worst <= 1, `${m}: differs from shadelab render by up to ${worst}`);
   }
   // Orbiting draws; it neither parses nor prepares the model, nor reads the scene text again.
+  await page.evaluate(() => window.shadelab.drawTogether(true));
+  await settle(page);
   const still = await page.evaluate(() => window.shadelab.counts());
   await page.locator('.panel[data-method="phong"] canvas').focus();
   for (let k = 0; k < 3; k++) {
@@ -316,14 +318,66 @@ test('a file is parsed once: one panel parses it, the others take its mesh, and 
     await settle(page);
   }
   const orbited = await page.evaluate(() => window.shadelab.counts());
+  // The three panels share the scene: the first panel's worker draws the
+  // three methods of each frame in one call, the others rest.
+  const drawn = { flat: 3, gouraud: 0, phong: 0 };
   for (const m of METHODS) {
     assert.equal(orbited[m].files_parsed + orbited[m].files_adopted, still[m].files_parsed + still[m].files_adopted, m);
     assert.equal(orbited[m].models_prepared, still[m].models_prepared, `${m}: the model was prepared again`);
-    assert.equal(orbited[m].frames - still[m].frames, 3, `${m}: one frame per key`);
-    assert.equal(orbited[m].camera_turns - still[m].camera_turns, 3, `${m}: the camera turned`);
+    assert.equal(orbited[m].frames - still[m].frames, 3 * drawn[m], `${m}: three frames per key in one worker`);
+    assert.equal(orbited[m].camera_turns - still[m].camera_turns, drawn[m], `${m}: the camera turned`);
     assert.equal(orbited[m].scenes_read, still[m].scenes_read, `${m}: the scene text was read again`);
   }
   fs.rmSync(dir, { recursive: true, force: true });
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('the three panels of one scene are drawn in one request, with the pixels of three', async () => {
+  const { page, problems } = await openViewer('#model=torus&yaw=20&pitch=15&shininess=48');
+  // As on two cores (the default there; with more, each worker draws its own).
+  await page.evaluate(() => window.shadelab.drawTogether(true));
+  await settle(page);
+  const frames = async () => {
+    const c = await page.evaluate(() => window.shadelab.counts());
+    return Object.fromEntries(METHODS.map((m) => [m, c[m].frames]));
+  };
+  const together = () => page.evaluate(() => window.shadelab.panels.map((p) => !!p.last.together));
+  const before = await frames();
+  for (let i = 1; i <= 4; i++) await update(page, `s.camera.yaw = ${20 + 7 * i}`);
+  const after = await frames();
+  assert.deepEqual(
+    Object.fromEntries(METHODS.map((m) => [m, after[m] - before[m]])),
+    { flat: 12, gouraud: 0, phong: 0 },
+    "the first panel's worker drew the three methods of each frame",
+  );
+  assert.deepEqual(await together(), [true, true, true]);
+  const shared = await digests(page);
+  const stats = await page.evaluate(() => window.shadelab.panels.map((p) => p.last.stats));
+  // The Cost tab compares the methods' times: the panels are drawn apart, and
+  // the pictures and counts are the same.
+  await page.evaluate(() => window.shadelab.setTab('cost'));
+  await settle(page);
+  assert.deepEqual(await together(), [false, false, false]);
+  assert.deepEqual(await digests(page), shared);
+  assert.deepEqual(await page.evaluate(() => window.shadelab.panels.map((p) => p.last.stats)), stats);
+  // So with an overlay on one panel, and together again once it is gone.
+  await page.evaluate(() => window.shadelab.setTab('about'));
+  await settle(page);
+  assert.deepEqual(await together(), [true, true, true]);
+  await update(page, "s.overlays.gouraud = ['wireframe']");
+  assert.deepEqual(await together(), [false, false, false]);
+  const withOverlay = await digests(page);
+  assert.equal(withOverlay.flat, shared.flat);
+  assert.notEqual(withOverlay.gouraud, shared.gouraud);
+  await update(page, 's.overlays.gouraud = []');
+  assert.deepEqual(await together(), [true, true, true]);
+  assert.deepEqual(await digests(page), shared);
+  // With three cores or more, each worker draws its own panel: the same pictures.
+  await page.evaluate(() => window.shadelab.drawTogether(false));
+  await settle(page);
+  assert.deepEqual(await together(), [false, false, false]);
+  assert.deepEqual(await digests(page), shared);
   assert.deepEqual(problems, []);
   await page.close();
 });

@@ -3,6 +3,12 @@
 // requests replace each other and only the last is drawn next, so dragging
 // never queues up stale frames. Instruments ask the same worker with `ask`,
 // between frames.
+//
+// When the three panels draw the same scene with their three methods and
+// nothing else (no overlays, no error map), a `PanelGroup` asks the first
+// panel's worker for the three frames at once: the geometry is transformed,
+// set up and binned once instead of three times, and the other workers and
+// the second core stay free. Its frames reach each panel as its own would.
 import { t, plural, formatCount, formatNumber } from './i18n.js';
 import { el, beforeNextPaint, paintPending } from './dom.js';
 import { Marks } from './marks.js';
@@ -59,7 +65,10 @@ export class Panel {
     this.worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
     this.nextId = 1;
     this.waiting = new Map();
-    this.busy = false;
+    /** Whether this panel's worker is drawing a frame for it. */
+    this.drawing = false;
+    /** Whether a `PanelGroup` frame for this panel is being drawn. */
+    this.groupBusy = false;
     this.pending = null;
     /** The pixels' buffer of the last frame painted, given back to the worker for the next. */
     this.spare = null;
@@ -73,6 +82,11 @@ export class Panel {
     this.onerror = () => {};
     this.worker.onmessage = (event) => this.#receive(event.data);
     this.ready = this.ask({ type: 'init', module });
+  }
+
+  /** Whether a frame for this panel is being drawn (by its worker or a group). */
+  get busy() {
+    return this.drawing || this.groupBusy;
   }
 
   /** Sends one request to this panel's worker; resolves to its answer. */
@@ -121,6 +135,20 @@ export class Panel {
     if (!this.busy) this.#next();
   }
 
+  /** After a group's frame: draws what was asked for meanwhile. */
+  resume() {
+    if (this.drawing) return;
+    if (this.pending !== null) this.#next();
+    else this.figure.classList.remove('busy');
+  }
+
+  /** The buffer of the last frame painted, for the next frame's pixels (once). */
+  takeSpare() {
+    const spare = this.spare;
+    this.spare = null;
+    return spare;
+  }
+
   /** Resolves once no frame is being drawn or waiting. */
   idle() {
     const still = () => !this.busy && this.pending === null && !paintPending();
@@ -134,12 +162,11 @@ export class Panel {
   async #next() {
     const request = this.pending;
     this.pending = null;
-    this.busy = true;
+    this.drawing = true;
     this.figure.classList.add('busy');
     try {
       const { generation, gouraudSpecular, ...msg } = request;
-      const spare = this.spare;
-      this.spare = null;
+      const spare = this.takeSpare();
       const sent = performance.timeOrigin + performance.now();
       const frame = await this.ask({ type: 'render', ...msg, spare }, spare ? [spare] : []);
       frame.at.sent = sent;
@@ -147,15 +174,25 @@ export class Panel {
       frame.generation = generation;
       frame.gouraudSpecular = gouraudSpecular;
       frame.overlays = msg.overlays;
-      this.#draw(frame);
-      this.onframe(this, frame);
+      this.show(frame);
     } catch (error) {
       this.onerror(this, error);
     } finally {
-      this.busy = false;
-      if (this.pending !== null) this.#next();
-      else this.figure.classList.remove('busy');
+      this.drawing = false;
+      // While a group draws, what was asked for meanwhile waits for it (`resume`).
+      if (!this.groupBusy) this.resume();
     }
+  }
+
+  /**
+   * Paints a frame this panel's worker or a group drew and reports it; a
+   * frame of an older request than the one shown (one that was on its way
+   * while a group drew a newer one) is dropped.
+   */
+  show(frame) {
+    if (this.last && frame.generation < this.last.generation) return;
+    this.#draw(frame);
+    this.onframe(this, frame);
   }
 
   /** Colours the last error map on `scale` (the three panels share one scale). */
@@ -168,6 +205,12 @@ export class Panel {
   }
 
   #draw(frame) {
+    // Times of frames drawn together and apart are not comparable: each
+    // history holds one kind.
+    if (this.last && !!this.last.together !== !!frame.together) {
+      this.times.length = 0;
+      this.timings.length = 0;
+    }
     paint(this.canvas, this.context, frame);
     // When the request left, reached the worker, came back and was painted
     // (ms since the epoch): where a frame's latency goes (bench/viewer).
@@ -211,11 +254,14 @@ export class Panel {
       this.variantEl.dataset.specular = String(!!f.gouraudSpecular);
     }
     const { ms, frames } = this.captionTime();
+    // A group's frame took the time of the three panels together.
+    const label = f.together ? 'panel.time.together' : 'panel.time';
     this.timeEl.replaceChildren(
-      el('span', { class: 'time-label', text: plural('panel.time.label', frames) }),
+      el('span', { class: 'time-label', text: plural(`${label}.label`, frames) }),
       el('span', { class: 'time-value', text: t('panel.time', { ms: formatNumber(ms, 1) }) }),
     );
-    this.timeEl.title = plural('panel.time.title', frames);
+    this.timeEl.title = plural(`${label}.title`, frames);
+    this.timeEl.dataset.together = String(!!f.together);
     this.rasterEl.textContent = t(`panel.raster.${f.rasterizer}`);
     this.rasterEl.dataset.rasterizer = f.rasterizer;
     this.rasterEl.title = t(`panel.raster.${f.rasterizer}.title`);
@@ -234,5 +280,63 @@ export class Panel {
       polygons: plural('count.polygonsDrawn', s.rasterized),
       pixels: plural('count.pixelsShaded', s.fragments_shaded),
     });
+  }
+}
+
+/**
+ * The three panels drawn in one request to the first panel's worker (see
+ * the top of this file). Like a panel, it draws the newest request and
+ * drops the ones replaced while a frame was being drawn; while its frame is
+ * drawn, the panels' own requests wait, and a panel's own frame that was on
+ * its way is dropped if the group's is newer.
+ */
+export class PanelGroup {
+  constructor(panels) {
+    this.panels = panels;
+    this.pending = null;
+    this.busy = false;
+    this.onerror = () => {};
+  }
+
+  /** Asks for the three frames of `{scene, generation, gouraudSpecular}`; the newest request wins. */
+  render(request) {
+    this.pending = request;
+    if (!this.busy) this.#next();
+  }
+
+  async #next() {
+    const request = this.pending;
+    this.pending = null;
+    this.busy = true;
+    for (const p of this.panels) {
+      p.groupBusy = true;
+      p.figure.classList.add('busy');
+    }
+    try {
+      const { generation, gouraudSpecular, scene } = request;
+      const spares = this.panels.map((p) => p.takeSpare());
+      const sent = performance.timeOrigin + performance.now();
+      const answer = await this.panels[0].ask(
+        { type: 'render-methods', scene, spares },
+        spares.filter((s) => s),
+      );
+      const arrived = performance.timeOrigin + performance.now();
+      answer.frames.forEach((frame, k) => {
+        frame.ms = answer.ms;
+        frame.at = { ...answer.at, sent, arrived };
+        frame.generation = generation;
+        frame.gouraudSpecular = gouraudSpecular;
+        frame.overlays = '';
+        frame.together = true;
+        this.panels[k].show(frame);
+      });
+    } catch (error) {
+      this.onerror(this.panels[0], error);
+    } finally {
+      this.busy = false;
+      for (const p of this.panels) p.groupBusy = false;
+      if (this.pending !== null) this.#next();
+      else for (const p of this.panels) p.resume();
+    }
   }
 }

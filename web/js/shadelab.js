@@ -81,18 +81,43 @@ export class Shadelab {
   }
 
   /**
-   * A copy of the last frame's RGBA pixels (as drawn, overlays included),
-   * in `spare` when it is an ArrayBuffer of their size.
+   * Renders a scene given as TOML text with the three methods at once, flat,
+   * Gouraud and Phong, over one pass of the geometry: what three `render`s
+   * of the three panels' texts (which differ only in `render.shading`) give.
+   * Returns {frames: [flat, gouraud, phong], ms}, each frame as `render`'s
+   * but without `ms` (`ms` is the call's, the three together); `spares`,
+   * up to three ArrayBuffers of earlier frames of this size, are reused for
+   * the pixels. The text's own method's frame becomes the last frame.
    */
-  pixels(spare = null) {
-    const start = this.x.shadelab_pixels();
-    const length = this.x.shadelab_pixels_len();
+  renderMethods(sceneToml, spares = []) {
+    const text = encoder.encode(sceneToml);
+    this.#input(text.length, (view) => view.set(text));
+    const start = performance.now();
+    const status = this.x.shadelab_render_methods();
+    const ms = performance.now() - start;
+    const { frames } = this.#call(status);
+    frames.forEach((frame, k) => {
+      frame.pixels = this.#copy(this.x.shadelab_image(k), this.x.shadelab_image_len(k), spares[k]);
+    });
+    return { frames, ms };
+  }
+
+  /** A copy of `length` bytes at `start` of the memory, in `spare` when it is an ArrayBuffer of that size. */
+  #copy(start, length, spare = null) {
     if (spare && spare.byteLength === length) {
       const out = new Uint8ClampedArray(spare);
       out.set(new Uint8ClampedArray(this.x.memory.buffer, start, length));
       return out;
     }
     return new Uint8ClampedArray(this.x.memory.buffer.slice(start, start + length));
+  }
+
+  /**
+   * A copy of the last frame's RGBA pixels (as drawn, overlays included),
+   * in `spare` when it is an ArrayBuffer of their size.
+   */
+  pixels(spare = null) {
+    return this.#copy(this.x.shadelab_pixels(), this.x.shadelab_pixels_len(), spare);
   }
 
   /** Draws overlays ('wireframe,light', …) over the last frame; returns its pixels. */

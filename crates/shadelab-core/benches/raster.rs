@@ -5,7 +5,9 @@
 //! * `small-triangles/*`: an icosphere subdivided 6 times (81,920 triangles, most
 //!   of a few pixels): vertex work, setup, binning, small-triangle walks;
 //! * `fill/*`: a full-screen quad at 1920×1080: per-pixel shading and the
-//!   write-out, nothing else.
+//!   write-out, nothing else;
+//! * `three-methods/*`: the viewer's frame, the three methods of one scene at
+//!   480×480, as three frames and as one `Renderer::render_methods` call.
 //!
 //! Run with `cargo bench -p shadelab-core`. The CPU and the SIMD level are
 //! printed first and are part of each benchmark's name; work runs on a
@@ -151,6 +153,34 @@ fn benches(c: &mut Criterion) {
             options(1920, 1080, shading, Rasterizer::Tiled),
             best,
         );
+    }
+
+    // The viewer's frame: the three methods of one scene, as three frames
+    // and as one `render_methods` call (geometry once).
+    let panel = options(480, 480, Shading::Flat, Rasterizer::Tiled);
+    for (name, scene) in [("teapot", &teapot), ("icosphere6", &sphere)] {
+        let mut renderer = Renderer::with_simd(best);
+        let mut images: [Image; 3] =
+            std::array::from_fn(|_| Image::filled(480, 480, Rgb8::new(0, 0, 0)));
+        let group = format!("three-methods/{name}-480/tiled-{}", best.name());
+        c.bench_function(&format!("{group}/one-by-one"), |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    for (shading, image) in Shading::ALL.into_iter().zip(&mut images) {
+                        let options = RenderOptions { shading, ..panel };
+                        renderer.render_into(scene, &options, image).unwrap();
+                    }
+                })
+            })
+        });
+        c.bench_function(&format!("{group}/at-once"), |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    let [x, y, z] = &mut images;
+                    renderer.render_methods(scene, &panel, [x, y, z]).unwrap()
+                })
+            })
+        });
     }
 }
 

@@ -112,6 +112,48 @@ impl Renderer {
         Ok(rasterizer.render(scene, options, &self.lighting, image))
     }
 
+    /// Renders `scene` with each shading method, flat, Gouraud and Phong
+    /// (in that order, into `images`; `options.shading` is not read): the
+    /// same images and statistics as three calls of
+    /// [`Renderer::render_into`]. The tiled rasterizer transforms, sets up
+    /// and bins the geometry once for the three (the viewer's three panels
+    /// and `compare` share everything but the method); the scanline one,
+    /// and modes only it draws, render three frames.
+    ///
+    /// # Errors
+    /// As [`Renderer::render_into`], for any of the three methods.
+    pub fn render_methods(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        mut images: [&mut Image; 3],
+    ) -> Result<[RenderStats; 3], RenderError> {
+        let each = Shading::ALL.map(|shading| RenderOptions {
+            shading,
+            ..*options
+        });
+        if options.rasterizer == Rasterizer::Scanline || each.iter().any(|o| o.needs_scanline()) {
+            let mut stats = [RenderStats::default(); 3];
+            for ((options, image), stats) in each.iter().zip(images).zip(&mut stats) {
+                *stats = self.render_into(scene, options, image)?;
+            }
+            return Ok(stats);
+        }
+        for options in &each {
+            options.check()?;
+        }
+        validate(scene, options)?;
+        for image in images.iter_mut() {
+            if image.width() != options.width || image.height() != options.height {
+                **image = Image::filled(options.width, options.height, options.background);
+            }
+        }
+        set_lighting(&mut self.lighting, scene, options);
+        Ok(self
+            .tiled
+            .render_methods(scene, options, &self.lighting, images))
+    }
+
     /// How many polygons cover each pixel, row by row, with no depth test.
     ///
     /// # Errors

@@ -191,45 +191,7 @@ fn every_builtin_model_matches_the_scanline_rasterizer() {
 #[test]
 fn camera_inside_a_mesh_and_clipped_floors_match() {
     // Clipping against the near plane and the guard band happens on both sides.
-    let cube = builtin_model("cube", Some(4)).unwrap();
-    let normals = vertex_normals(&cube, NormalWeighting::Uniform, Some(30.0));
-    let inside = scene(
-        cube,
-        normals,
-        camera(
-            DVec3::new(0.1, 0.2, 0.3),
-            DVec3::new(1.0, 0.3, -0.4),
-            70.0,
-            0.05,
-            10.0,
-        ),
-    );
-    let floor = Mesh::from_polygons(
-        vec![
-            Vec3::new(-1e6, -1.0, -1e6),
-            Vec3::new(-1e6, -1.0, 1e6),
-            Vec3::new(1e6, -1.0, 1e6),
-            Vec3::new(1e6, -1.0, -1e6),
-        ],
-        [[0u32, 1, 2, 3]],
-    )
-    .unwrap();
-    let up = CornerNormals {
-        normals: vec![Vec3::Y],
-        corner: vec![0; 4],
-    };
-    let floor = scene(
-        floor,
-        up,
-        camera(
-            DVec3::new(0.0, 0.5, 0.0),
-            DVec3::new(0.0, 0.2, -3.0),
-            60.0,
-            0.1,
-            1e7,
-        ),
-    );
-    for (name, scene) in [("inside-cube", &inside), ("floor", &floor)] {
+    for (name, scene) in &clipped_scenes() {
         for (shading, interpolation) in all_modes() {
             let options = RenderOptions {
                 interpolation,

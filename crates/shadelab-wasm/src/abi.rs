@@ -169,6 +169,28 @@ pub extern "C" fn shadelab_render() -> u32 {
     })
 }
 
+/// Renders the scene whose TOML text is in the input buffer with the three
+/// methods at once ([`Engine::render_methods`]): the answer is
+/// `{"frames": [flat, gouraud, phong]}`, each as [`shadelab_render`]'s, and
+/// their pixels are images 0, 1 and 2 at [`shadelab_image`].
+#[no_mangle]
+pub extern "C" fn shadelab_render_methods() -> u32 {
+    #[derive(Serialize)]
+    struct Frames {
+        frames: [crate::engine::FrameInfo; 3],
+    }
+    with(|i| {
+        let answer = match std::str::from_utf8(&i.input) {
+            Ok(text) => i
+                .engine
+                .render_methods(text)
+                .map(|frames| Frames { frames }),
+            Err(_) => Err(EngineError("the scene text is not UTF-8".into())),
+        };
+        i.answer(answer)
+    })
+}
+
 /// Answers a request whose input buffer holds its JSON.
 fn json_request<Q: DeserializeOwned, A: Serialize>(
     f: impl FnOnce(&mut Engine, &Q) -> Result<A, EngineError>,

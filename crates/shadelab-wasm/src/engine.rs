@@ -14,7 +14,7 @@
 
 use serde::Serialize;
 use shadelab_core::{
-    CornerNormals, Image, Mesh, RenderOptions, RenderStats, Renderer, Rgb8, Scene,
+    CornerNormals, Image, Mesh, RenderOptions, RenderStats, Renderer, Rgb8, Scene, Shading,
 };
 use shadelab_io::{parse_mesh, ModelSection, SceneError, SceneFile};
 
@@ -192,6 +192,9 @@ pub struct Engine {
     /// last instrument request.
     pub(crate) errors: Option<crate::instruments::KeptErrors>,
     pub(crate) images: Vec<Vec<u8>>,
+    /// The three methods' frames of [`Engine::render_methods`], kept for
+    /// their buffers.
+    methods: Vec<Image>,
     counts: EngineCounts,
 }
 
@@ -325,20 +328,60 @@ impl Engine {
         self.frame_toml.clear();
         self.frame_toml.push_str(toml);
         self.errors = None;
-        let split = shadelab_lab::Cost::new(options.shading, stats, 0.0, 1);
-        let view = scene.camera.view().to_cols_array();
-        Ok(FrameInfo {
-            width: options.width,
-            height: options.height,
-            rasterizer: options.rasterizer.name(),
-            stats,
-            cost: Evaluations {
-                per_polygon: split.per_polygon,
-                per_vertex: split.per_vertex,
-                per_pixel: split.per_pixel,
-            },
-            view,
-        })
+        Ok(frame_info(scene, &options, stats))
+    }
+
+    /// Renders the scene `toml` with each method, flat, Gouraud and Phong,
+    /// in one pass over the geometry ([`Renderer::render_methods`]): what
+    /// three engines' [`Engine::render`] of the three panels' texts (which
+    /// differ only in `render.shading`) would draw, for about the cost of
+    /// one frame's geometry and three fills. [`Engine::images`] then holds
+    /// the three frames' RGBA pixels, in that order; the frame of the
+    /// text's own method becomes the engine's last frame, for the
+    /// instruments, as if [`Engine::render`] had drawn it.
+    ///
+    /// # Errors
+    /// As [`Engine::render`].
+    pub fn render_methods(&mut self, toml: &str) -> Result<[FrameInfo; 3], EngineError> {
+        let Loaded { options, .. } = self.load_scene(toml)?;
+        let scene = &self.prepared.as_ref().expect("load_scene keeps it").scene;
+        self.methods
+            .resize_with(3, || Image::filled(1, 1, Rgb8::default()));
+        let [a, b, c] = &mut self.methods[..] else {
+            unreachable!("three images")
+        };
+        let stats = self
+            .renderer
+            .render_methods(scene, &options, [a, b, c])
+            .map_err(|e| EngineError(e.to_string()))?;
+        self.images.resize_with(3, Vec::new);
+        self.images.truncate(3);
+        for (image, out) in self.methods.iter().zip(&mut self.images) {
+            rgba_of(image, out);
+        }
+        let own = Shading::ALL
+            .iter()
+            .position(|&s| s == options.shading)
+            .expect("every method is in ALL");
+        let last = self
+            .image
+            .get_or_insert_with(|| Image::filled(1, 1, Rgb8::default()));
+        // Swapped, not copied: the next frame of this size reuses the buffer.
+        std::mem::swap(last, &mut self.methods[own]);
+        self.rgba.clear();
+        self.rgba.extend_from_slice(&self.images[own]);
+        self.counts.frames += 3;
+        self.options = Some(options);
+        self.frame_toml.clear();
+        self.frame_toml.push_str(toml);
+        self.errors = None;
+        Ok(std::array::from_fn(|k| {
+            let options = RenderOptions {
+                shading: Shading::ALL[k],
+                ..options
+            };
+            frame_info(scene, &options, stats[k])
+        }))
     }
 
     /// Reads the scene `toml`, preparing its model again only when its
@@ -499,6 +542,23 @@ impl Engine {
     /// The last frame as an image, for tests.
     pub fn image(&self) -> Option<&Image> {
         self.image.as_ref()
+    }
+}
+
+/// What [`Engine::render`] says of a frame drawn with `options`.
+fn frame_info(scene: &Scene, options: &RenderOptions, stats: RenderStats) -> FrameInfo {
+    let split = shadelab_lab::Cost::new(options.shading, stats, 0.0, 1);
+    FrameInfo {
+        width: options.width,
+        height: options.height,
+        rasterizer: options.rasterizer.name(),
+        stats,
+        cost: Evaluations {
+            per_polygon: split.per_polygon,
+            per_vertex: split.per_vertex,
+            per_pixel: split.per_pixel,
+        },
+        view: scene.camera.view().to_cols_array(),
     }
 }
 

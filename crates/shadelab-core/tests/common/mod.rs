@@ -304,6 +304,51 @@ pub fn scene(mesh: Mesh, normals: CornerNormals, camera: Camera) -> Scene {
     }
 }
 
+/// Two scenes that need clipping: the camera inside a cube (near plane and
+/// guard band) and a floor a million units wide seen from just above it.
+pub fn clipped_scenes() -> [(&'static str, Scene); 2] {
+    let cube = shadelab_core::builtin_model("cube", Some(4)).unwrap();
+    let normals =
+        shadelab_core::vertex_normals(&cube, shadelab_core::NormalWeighting::Uniform, Some(30.0));
+    let inside = scene(
+        cube,
+        normals,
+        camera(
+            DVec3::new(0.1, 0.2, 0.3),
+            DVec3::new(1.0, 0.3, -0.4),
+            70.0,
+            0.05,
+            10.0,
+        ),
+    );
+    let floor = Mesh::from_polygons(
+        vec![
+            Vec3::new(-1e6, -1.0, -1e6),
+            Vec3::new(-1e6, -1.0, 1e6),
+            Vec3::new(1e6, -1.0, 1e6),
+            Vec3::new(1e6, -1.0, -1e6),
+        ],
+        [[0u32, 1, 2, 3]],
+    )
+    .unwrap();
+    let up = CornerNormals {
+        normals: vec![Vec3::Y],
+        corner: vec![0; 4],
+    };
+    let floor = scene(
+        floor,
+        up,
+        camera(
+            DVec3::new(0.0, 0.5, 0.0),
+            DVec3::new(0.0, 0.2, -3.0),
+            60.0,
+            0.1,
+            1e7,
+        ),
+    );
+    [("inside-cube", inside), ("floor", floor)]
+}
+
 /// Corner normals given explicitly, one per corner (no sharing).
 pub fn explicit_normals(normals: &[Vec3]) -> CornerNormals {
     CornerNormals {

@@ -4,7 +4,7 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
-use super::setup::{plane_count, Plane, Triangle};
+use super::setup::{plane_count, Plane, Triangle, ALL_ATTRS};
 
 use crate::clip::{clip_polygon, ClipVertex};
 use crate::raster::to_window;
@@ -63,10 +63,10 @@ impl Bin {
 pub(super) struct Chunk {
     pub(super) bins: Vec<Bin>,
     pub(super) stats: RenderStats,
-    pub(super) input: Vec<ClipVertex<MAX_ATTRS>>,
-    pub(super) clipped: Vec<ClipVertex<MAX_ATTRS>>,
-    pub(super) scratch: Vec<ClipVertex<MAX_ATTRS>>,
-    pub(super) window: Vec<ScreenVertex<MAX_ATTRS>>,
+    pub(super) input: Vec<ClipVertex<ALL_ATTRS>>,
+    pub(super) clipped: Vec<ClipVertex<ALL_ATTRS>>,
+    pub(super) scratch: Vec<ClipVertex<ALL_ATTRS>>,
+    pub(super) window: Vec<ScreenVertex<ALL_ATTRS>>,
     /// Flat shading: each front polygon's unit normal and centroid, lit in
     /// SIMD batches once setup is done; triangles hold an index until then.
     pub(super) flat_surfaces: Vec<[f32; 6]>,
@@ -77,6 +77,10 @@ pub(super) struct Chunk {
 pub(super) struct Frame<'a> {
     pub(super) scene: &'a Scene,
     pub(super) options: &'a RenderOptions,
+    /// The method whose attributes are set up, or `None` for the three
+    /// methods at once (`ALL_ATTRS`: Phong's, then Gouraud's colours; flat
+    /// colours in the triangles).
+    pub(super) method: Option<Shading>,
     pub(super) projected: &'a [Projected],
     pub(super) view_projection: Mat4,
     pub(super) corner_vertex: &'a [u32],
@@ -91,21 +95,37 @@ pub(super) struct Frame<'a> {
 
 impl Frame<'_> {
     /// The attributes the shading method interpolates, at a corner.
-    pub(super) fn corner_attrs(&self, corner: usize, back: bool) -> [f32; MAX_ATTRS] {
-        match self.options.shading {
-            Shading::Flat => [0.0; MAX_ATTRS],
-            Shading::Gouraud => {
-                let v = self.corner_vertex[corner] as usize;
-                let [r, g, b] = if back { self.lit_back[v] } else { self.lit[v] };
-                [r, g, b, 0.0, 0.0, 0.0]
+    pub(super) fn corner_attrs(&self, corner: usize, back: bool) -> [f32; ALL_ATTRS] {
+        let colour = || {
+            let v = self.corner_vertex[corner] as usize;
+            if back {
+                self.lit_back[v]
+            } else {
+                self.lit[v]
             }
-            Shading::Phong => {
-                let normals = &self.scene.normals;
-                let n = normals.normals[normals.corner[corner] as usize];
-                let p = self.scene.mesh.positions()[self.scene.mesh.corners()[corner] as usize];
-                [n.x, n.y, n.z, p.x, p.y, p.z]
+        };
+        let surface = || {
+            let normals = &self.scene.normals;
+            let n = normals.normals[normals.corner[corner] as usize];
+            let p = self.scene.mesh.positions()[self.scene.mesh.corners()[corner] as usize];
+            [n.x, n.y, n.z, p.x, p.y, p.z]
+        };
+        let mut out = [0.0; ALL_ATTRS];
+        match self.method {
+            Some(Shading::Flat) => {}
+            Some(Shading::Gouraud) => out[..3].copy_from_slice(&colour()),
+            Some(Shading::Phong) => out[..6].copy_from_slice(&surface()),
+            None => {
+                out[..6].copy_from_slice(&surface());
+                out[6..].copy_from_slice(&colour());
             }
         }
+        out
+    }
+
+    /// Whether flat shading's colours are set up (in `Triangle::color`).
+    pub(super) fn lights_polygons(&self) -> bool {
+        matches!(self.method, None | Some(Shading::Flat))
     }
 
     /// [`Frame::corner_attrs`] of a front face, for the method with `A`
@@ -116,11 +136,15 @@ impl Frame<'_> {
         if A == 3 {
             let c = self.lit[self.corner_vertex[corner] as usize];
             out[..3].copy_from_slice(&c);
-        } else if A == 6 {
+        } else if A >= 6 {
             let normals = &self.scene.normals;
             let n = normals.normals[normals.corner[corner] as usize];
             let p = self.scene.mesh.positions()[self.scene.mesh.corners()[corner] as usize];
-            out.copy_from_slice(&[n.x, n.y, n.z, p.x, p.y, p.z]);
+            out[..6].copy_from_slice(&[n.x, n.y, n.z, p.x, p.y, p.z]);
+        }
+        if A == ALL_ATTRS {
+            let c = self.lit[self.corner_vertex[corner] as usize];
+            out[6..].copy_from_slice(&c);
         }
         out
     }
@@ -154,9 +178,10 @@ impl Frame<'_> {
         let mesh = &self.scene.mesh;
         let vertex = mesh.corners()[corner] as usize;
         prefetch(&self.projected[vertex]);
-        if A == 3 {
+        if A == 3 || A == ALL_ATTRS {
             prefetch(&self.lit[self.corner_vertex[corner] as usize]);
-        } else if A == 6 {
+        }
+        if A >= 6 {
             let normals = &self.scene.normals;
             prefetch(&normals.normals[normals.corner[corner] as usize]);
             prefetch(&mesh.positions()[vertex]);
@@ -164,10 +189,11 @@ impl Frame<'_> {
     }
 
     pub(super) fn attr_count(&self) -> usize {
-        match self.options.shading {
-            Shading::Flat => 0,
-            Shading::Gouraud => 3,
-            Shading::Phong => 6,
+        match self.method {
+            Some(Shading::Flat) => 0,
+            Some(Shading::Gouraud) => 3,
+            Some(Shading::Phong) => 6,
+            None => ALL_ATTRS,
         }
     }
 }
@@ -258,7 +284,7 @@ impl Chunk {
             }
             self.setup_polygon(frame, face, normal);
         }
-        if frame.options.shading == Shading::Flat {
+        if frame.lights_polygons() {
             self.light_flat_polygons(frame);
         }
     }
@@ -306,7 +332,7 @@ impl Chunk {
         };
         let v: [ScreenVertex<A>; 3] = [vertex(0), vertex(1), vertex(2)];
         let planes = t.planes(&v, A, options.interpolation);
-        if A == 0 {
+        if A == 0 || A == ALL_ATTRS {
             // As `flat_surface`, with the triangle's corners at hand.
             let positions = frame.scene.mesh.positions();
             let corners = &frame.scene.mesh.corners()[first_corner..first_corner + 3];
@@ -393,7 +419,7 @@ impl Chunk {
             self.window.reverse();
         }
         self.stats.rasterized += 1;
-        let color = if options.shading == Shading::Flat {
+        let color = if frame.lights_polygons() {
             self.flat_surface(frame, face, normal, back)
         } else {
             0
@@ -459,10 +485,11 @@ impl Kernel for SetupKernel<'_, '_> {
     #[inline(always)]
     fn run<S: Simd>(self, _: S) {
         let (chunk, frame, faces) = (self.chunk, self.frame, self.faces);
-        match frame.options.shading {
-            Shading::Flat => chunk.setup::<0>(frame, faces),
-            Shading::Gouraud => chunk.setup::<3>(frame, faces),
-            Shading::Phong => chunk.setup::<6>(frame, faces),
+        match frame.method {
+            Some(Shading::Flat) => chunk.setup::<0>(frame, faces),
+            Some(Shading::Gouraud) => chunk.setup::<3>(frame, faces),
+            Some(Shading::Phong) => chunk.setup::<6>(frame, faces),
+            None => chunk.setup::<ALL_ATTRS>(frame, faces),
         }
     }
 }

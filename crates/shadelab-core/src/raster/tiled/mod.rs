@@ -39,6 +39,17 @@
 //!   buffers, which stay in its cache.
 //! * **No allocation per frame in steady state.** All buffers live in
 //!   [`TiledRasterizer`] and are cleared, not dropped, between frames.
+//! * **The three methods at once share the geometry.** The viewer's three
+//!   panels (and `render_methods`' callers) draw one scene with each method.
+//!   Steps 1 and 2 do not depend on the method but for the attributes, so
+//!   `render_methods` runs them once with the attributes of all three
+//!   (Phong's normal and position, Gouraud's colours, flat's colour in the
+//!   triangle: `setup::ALL_ATTRS`), then each band fills its rows three
+//!   times, each shader reading its own planes. Every plane is solved on its
+//!   own and clipping interpolates each attribute on its own, so the bytes
+//!   and counts are those of three frames (`tests/methods.rs`). On meshes
+//!   of 70k–100k small triangles the three cost about two thirds of three
+//!   frames (WebAssembly, 480²); the three fills still walk each triangle.
 
 mod band;
 mod chunk;
@@ -52,7 +63,7 @@ use rayon::prelude::*;
 use self::band::{band_rows, Band, Pass};
 
 use self::chunk::{clip_position, Chunk, Frame, Projected, SetupKernel};
-use self::setup::{plane_count, BAND_ROWS};
+use self::setup::{plane_count, BAND_ROWS, GOURAUD_OF_ALL, PLANES};
 use self::vertices::{light_vertices, FaceNormals, VertexTable};
 
 use crate::clip::{is_inside, ClipVertex};
@@ -88,6 +99,9 @@ pub(crate) struct TiledRasterizer {
     chunks: Vec<Chunk>,
     /// The frame's lighting, prepared for lanes.
     phong: PhongShader,
+    /// The last frame's lighting evaluations: flat's (per polygon) and
+    /// Gouraud's (per vertex).
+    evaluations: (u64, u64),
     /// One band's working buffers per thread: each thread draws its bands
     /// one after the other in the same buffers, which stay in its cache.
     bands: Vec<Mutex<Band>>,
@@ -101,8 +115,10 @@ enum Output<'a> {
     Counts(&'a mut [u32]),
 }
 
-/// One band's work, compiled per SIMD level.
-struct BandKernel<'a, S> {
+/// One band's work, compiled per SIMD level. `ALL`: the bins hold the
+/// planes of the three methods at once (`PLANES` per triangle), of which
+/// the shader takes its own.
+struct BandKernel<'a, S, const ALL: bool> {
     band: &'a mut Band,
     index: usize,
     chunks: &'a [Chunk],
@@ -111,7 +127,7 @@ struct BandKernel<'a, S> {
     output: Output<'a>,
 }
 
-impl<S: Shader> Kernel for BandKernel<'_, S> {
+impl<S: Shader, const ALL: bool> Kernel for BandKernel<'_, S, ALL> {
     type Output = ();
 
     #[inline(always)]
@@ -135,11 +151,20 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             0..0
         };
         self.band.begin(o.width, y1 - y0, pass, columns);
-        let stride = plane_count(S::ATTRS);
+        let stride = if ALL { PLANES } else { plane_count(S::ATTRS) };
         let lanes = self.shader.lanes(simd);
         for chunk in self.chunks {
             let bin = &chunk.bins[self.index];
             for (t, planes) in bin.triangles.iter().zip(bin.planes.chunks_exact(stride)) {
+                // Flat's depth and Phong's planes come first; Gouraud's are
+                // gathered (five copies of 12 bytes).
+                let gathered;
+                let planes = if ALL && S::ATTRS == 3 {
+                    gathered = GOURAUD_OF_ALL.map(|j| planes[j]);
+                    &gathered[..]
+                } else {
+                    planes
+                };
                 self.band.draw(
                     simd,
                     t,
@@ -163,6 +188,11 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
     }
 }
 
+/// A colour packed as the bands keep it: `r | g << 8 | b << 16`.
+fn packed(Rgb8([r, g, b]): Rgb8) -> i32 {
+    i32::from(r) | i32::from(g) << 8 | i32::from(b) << 16
+}
+
 /// The calling thread's band buffers (uncontended: one per pool thread;
 /// a caller outside the pool uses the first).
 fn scratch_band(scratch: &[Mutex<Band>]) -> MutexGuard<'_, Band> {
@@ -172,8 +202,9 @@ fn scratch_band(scratch: &[Mutex<Band>]) -> MutexGuard<'_, Band> {
         .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-/// Runs one band of a pass with the shader `S`, compiled for the SIMD level.
-fn band_pass<S: Shader>(
+/// Runs one band of a pass with the shader `S`, compiled for the SIMD level
+/// (`ALL`: the bins were set up for the three methods at once).
+fn band_pass<S: Shader, const ALL: bool>(
     simd: SimdLevel,
     band: &mut Band,
     index: usize,
@@ -182,7 +213,7 @@ fn band_pass<S: Shader>(
     options: &RenderOptions,
     output: Output<'_>,
 ) {
-    let kernel = BandKernel {
+    let kernel = BandKernel::<S, ALL> {
         band,
         index,
         chunks,
@@ -217,6 +248,7 @@ impl TiledRasterizer {
             lit_back: Vec::new(),
             chunks: Vec::new(),
             phong: PhongShader::default(),
+            evaluations: (0, 0),
             bands: Vec::new(),
         }
     }
@@ -235,11 +267,10 @@ impl Rasterize for TiledRasterizer {
         lighting: &Lighting,
         image: &mut Image,
     ) -> RenderStats {
-        let mut stats = self.geometry(scene, options, lighting);
+        let mut stats = self.geometry(scene, options, lighting, Some(options.shading));
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
-        let Rgb8([r, g, b]) = options.background;
-        let background = i32::from(r) | i32::from(g) << 8 | i32::from(b) << 16;
+        let background = packed(options.background);
         let phong = &self.phong;
         let scratch = &self.bands;
         let bands = image
@@ -251,13 +282,25 @@ impl Rasterize for TiledRasterizer {
             let band = &mut *guard;
             let output = Output::Image(pixels, background);
             match options.shading {
-                Shading::Flat => band_pass(simd, band, index, chunks, &FlatShader, options, output),
-                Shading::Gouraud => {
-                    band_pass(simd, band, index, chunks, &GouraudShader, options, output)
+                Shading::Flat => {
+                    band_pass::<_, false>(simd, band, index, chunks, &FlatShader, options, output)
                 }
+                Shading::Gouraud => band_pass::<_, false>(
+                    simd,
+                    band,
+                    index,
+                    chunks,
+                    &GouraudShader,
+                    options,
+                    output,
+                ),
                 Shading::Phong => match &phong.one_point_light {
-                    Some(one) => band_pass(simd, band, index, chunks, one, options, output),
-                    None => band_pass(simd, band, index, chunks, phong, options, output),
+                    Some(one) => {
+                        band_pass::<_, false>(simd, band, index, chunks, one, options, output)
+                    }
+                    None => {
+                        band_pass::<_, false>(simd, band, index, chunks, phong, options, output)
+                    }
                 },
             }
             (band.fragments, band.covered)
@@ -278,7 +321,7 @@ impl Rasterize for TiledRasterizer {
         options: &RenderOptions,
         lighting: &Lighting,
     ) -> Vec<u32> {
-        self.geometry(scene, options, lighting);
+        self.geometry(scene, options, lighting, Some(options.shading));
         let width = options.width as usize;
         let mut counts = vec![0u32; width * options.height as usize];
         let (chunks, simd) = (&self.chunks, self.simd);
@@ -289,19 +332,91 @@ impl Rasterize for TiledRasterizer {
             .for_each(|(index, out)| {
                 let mut band = scratch_band(scratch);
                 let output = Output::Counts(out);
-                band_pass(simd, &mut band, index, chunks, &FlatShader, options, output);
+                band_pass::<_, false>(simd, &mut band, index, chunks, &FlatShader, options, output);
             });
         counts
     }
 }
 
 impl TiledRasterizer {
-    /// Vertex stage, then setup and binning; leaves the bins in `self.chunks`.
+    /// Draws a validated scene with the three methods at once, flat,
+    /// Gouraud and Phong, into `images` (already of the right size), in
+    /// that order; `options.shading` is not read. The same bytes and
+    /// statistics as three frames of [`Rasterize::render`], for about the
+    /// cost of one frame's geometry and three fills: the vertex stage,
+    /// setup and binning run once, for the attributes of all three.
+    pub fn render_methods(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        lighting: &Lighting,
+        images: [&mut Image; 3],
+    ) -> [RenderStats; 3] {
+        let stats = self.geometry(scene, options, lighting, None);
+        let width = options.width as usize;
+        let (chunks, simd) = (&self.chunks, self.simd);
+        let background = packed(options.background);
+        let phong = &self.phong;
+        let scratch = &self.bands;
+        let rows = width * BAND_ROWS as usize;
+        let [flat, gouraud, phong_image] = images;
+        let bands = flat
+            .pixels_mut()
+            .par_chunks_mut(rows)
+            .zip(gouraud.pixels_mut().par_chunks_mut(rows))
+            .zip(phong_image.pixels_mut().par_chunks_mut(rows))
+            .enumerate();
+        // Each band's three fills one after the other, while its bins are
+        // in this thread's cache.
+        let totals = bands.map(|(index, ((f, g), p))| {
+            let mut guard = scratch_band(scratch);
+            let band = &mut *guard;
+            let mut counts = [(0, 0); 3];
+            let output = Output::Image(f, background);
+            band_pass::<_, true>(simd, band, index, chunks, &FlatShader, options, output);
+            counts[0] = (band.fragments, band.covered);
+            let output = Output::Image(g, background);
+            band_pass::<_, true>(simd, band, index, chunks, &GouraudShader, options, output);
+            counts[1] = (band.fragments, band.covered);
+            let output = Output::Image(p, background);
+            match &phong.one_point_light {
+                Some(one) => band_pass::<_, true>(simd, band, index, chunks, one, options, output),
+                None => band_pass::<_, true>(simd, band, index, chunks, phong, options, output),
+            }
+            counts[2] = (band.fragments, band.covered);
+            counts
+        });
+        let sums = totals.reduce(
+            || [(0, 0); 3],
+            |a, b| std::array::from_fn(|k| (a[k].0 + b[k].0, a[k].1 + b[k].1)),
+        );
+        let (flat_evaluations, vertex_evaluations) = self.evaluations;
+        std::array::from_fn(|k| {
+            let (fragments, covered) = sums[k];
+            let lighting_evaluations = match k {
+                0 => flat_evaluations,
+                1 => vertex_evaluations,
+                _ => fragments,
+            };
+            RenderStats {
+                fragments_shaded: stats.fragments_shaded + fragments,
+                covered_pixels: stats.covered_pixels + covered,
+                lighting_evaluations,
+                ..stats
+            }
+        })
+    }
+
+    /// Vertex stage, then setup and binning, for `method`'s attributes
+    /// (`None`: the three methods'); leaves the bins in `self.chunks`.
+    /// The statistics' lighting evaluations are the frame's (flat's and
+    /// Gouraud's when all three), also kept in `self.evaluations`.
     fn geometry(
         &mut self,
         scene: &Scene,
         options: &RenderOptions,
         lighting: &Lighting,
+        method: Option<Shading>,
     ) -> RenderStats {
         let (width, height) = (options.width, options.height);
         let aspect = width as f32 / height as f32;
@@ -341,8 +456,8 @@ impl TiledRasterizer {
         };
         let (vertices, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
         let (phong, simd) = (&self.phong, self.simd);
-        let light = || match options.shading {
-            Shading::Gouraud => {
+        let light = || match method {
+            Some(Shading::Gouraud) | None => {
                 light_vertices(vertices, lit, lit_back, phong, simd, scene, options)
             }
             _ => 0,
@@ -366,6 +481,7 @@ impl TiledRasterizer {
         let frame = Frame {
             scene,
             options,
+            method,
             projected: &self.projected,
             view_projection,
             corner_vertex: &self.vertices.corner_vertex,
@@ -399,14 +515,17 @@ impl TiledRasterizer {
             lighting_evaluations: evaluations,
             ..RenderStats::default()
         };
+        let mut flat_evaluations = 0;
         for chunk in &self.chunks {
             let s = &chunk.stats;
             stats.degenerate += s.degenerate;
             stats.invisible += s.invisible;
             stats.culled += s.culled;
             stats.rasterized += s.rasterized;
-            stats.lighting_evaluations += s.lighting_evaluations;
+            flat_evaluations += s.lighting_evaluations;
         }
+        stats.lighting_evaluations += flat_evaluations;
+        self.evaluations = (flat_evaluations, evaluations);
         stats
     }
 }

@@ -19,8 +19,18 @@
 
 use crate::raster::{Interpolation, ScreenVertex, SUBPIXEL_BITS, SUBPIXEL_HALF, SUBPIXEL_ONE};
 
-/// The most planes a triangle has: depth, 1/w and six attributes.
-pub(crate) const PLANES: usize = 8;
+/// The attributes of a triangle set up for the three methods at once
+/// (`TiledRasterizer::render_methods`): Phong's six (normal, position),
+/// then Gouraud's three colours.
+pub(crate) const ALL_ATTRS: usize = 9;
+
+/// The most planes a triangle has: depth, 1/w and the attributes of the
+/// three methods at once.
+pub(crate) const PLANES: usize = 2 + ALL_ATTRS;
+
+/// Where Gouraud's planes (depth, 1/w, three colours) are among those of a
+/// triangle set up for the three methods at once.
+pub(crate) const GOURAUD_OF_ALL: [usize; 5] = [0, 1, 8, 9, 10];
 
 /// Image rows per band: the unit of binning and of parallel work.
 pub(crate) const BAND_ROWS: u32 = 16;

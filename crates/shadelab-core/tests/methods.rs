@@ -1,0 +1,247 @@
+//! `Renderer::render_methods` (the three methods over one geometry pass)
+//! against three frames of `Renderer::render_into`: the same bytes and the
+//! same statistics, on every built-in model, from several views, with every
+//! option that changes what setup computes (interpolation, culling,
+//! Gouraud's specular term, Blinn, attenuation, one point light or several),
+//! at every SIMD level, on clipped scenes, odd sizes and both thread counts;
+//! and the modes only the scanline rasterizer draws fall back to three frames.
+
+mod common;
+
+use common::*;
+use glam::{DVec3, Vec3};
+use shadelab_core::{
+    builtin_model, vertex_normals, Image, Interpolation, Light, LightKind, NormalWeighting,
+    Palette, Polygons, Rasterizer, RenderOptions, RenderStats, Renderer, Scene, Shading, SimdLevel,
+    Specular, BUILTIN_MODELS,
+};
+
+/// The three methods' images and statistics, one frame each.
+fn one_by_one(
+    renderer: &mut Renderer,
+    scene: &Scene,
+    options: &RenderOptions,
+) -> ([Image; 3], [RenderStats; 3]) {
+    let mut stats = [RenderStats::default(); 3];
+    let images = std::array::from_fn(|k| {
+        let o = RenderOptions {
+            shading: Shading::ALL[k],
+            ..*options
+        };
+        let mut image = Image::filled(1, 1, o.background);
+        stats[k] = renderer.render_into(scene, &o, &mut image).unwrap();
+        image
+    });
+    (images, stats)
+}
+
+/// Checks `render_methods` against [`one_by_one`] at every SIMD level, with
+/// a renderer kept from the checks before (`kept`) and fresh ones, twice
+/// each (images of a wrong size first, to be replaced; then the same ones).
+fn check(name: &str, kept: &mut Renderer, scene: &Scene, options: &RenderOptions) {
+    let mut fresh: Vec<Renderer> = SimdLevel::supported().map(Renderer::with_simd).collect();
+    for renderer in std::iter::once(kept).chain(fresh.iter_mut()) {
+        let level = renderer.simd();
+        let (want, want_stats) = one_by_one(&mut Renderer::with_simd(level), scene, options);
+        let mut got: [Image; 3] = std::array::from_fn(|_| Image::filled(3, 2, options.background));
+        for round in 0..2 {
+            let [a, b, c] = &mut got;
+            let stats = renderer.render_methods(scene, options, [a, b, c]).unwrap();
+            for k in 0..3 {
+                let method = Shading::ALL[k].name();
+                let level = level.name();
+                assert!(
+                    got[k] == want[k],
+                    "{name}: {method} ({level}, round {round}) differs from its own frame"
+                );
+                assert_eq!(
+                    stats[k], want_stats[k],
+                    "{name}: {method} ({level}) statistics"
+                );
+            }
+        }
+    }
+}
+
+fn lights_variants() -> Vec<(&'static str, Vec<Light>)> {
+    let (_, standard, _) = standard_lighting();
+    let mut attenuated = standard.clone();
+    attenuated[0].attenuation = [1.0, 0.2, 0.05];
+    let one_point = vec![standard[0]];
+    let directional = vec![standard[1]];
+    vec![
+        ("two-lights", standard),
+        ("attenuated", attenuated),
+        ("one-point", one_point),
+        ("directional", directional),
+        ("dark", Vec::new()),
+    ]
+}
+
+#[test]
+fn the_three_methods_at_once_equal_three_frames_on_every_builtin_model() {
+    let mut kept = Renderer::new();
+    for info in BUILTIN_MODELS {
+        let mesh = builtin_model(info.name, Some(info.default_detail))
+            .unwrap()
+            .normalized();
+        let normals = vertex_normals(&mesh, NormalWeighting::Angle, info.default_crease_degrees);
+        let base = scene(
+            mesh,
+            normals,
+            camera(DVec3::new(0.4, 0.6, 3.2), DVec3::ZERO, 40.0, 0.5, 20.0),
+        );
+        for (view, (yaw, pitch)) in [(0.0, 0.0), (-120.0, -48.0)].into_iter().enumerate() {
+            let scene = Scene {
+                camera: base.camera.orbit(yaw, pitch),
+                ..base.clone()
+            };
+            for interpolation in [Interpolation::Perspective, Interpolation::Screen] {
+                for cull in [true, false] {
+                    let options = RenderOptions {
+                        interpolation,
+                        cull_backfaces: cull,
+                        gouraud_specular: view == 1,
+                        specular: if cull {
+                            Specular::Phong
+                        } else {
+                            Specular::BlinnPhong
+                        },
+                        ..options(97, 83, Shading::Phong)
+                    };
+                    let name = format!("{}-view{view}-{interpolation:?}-cull{cull}", info.name);
+                    check(&name, &mut kept, &scene, &options);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn every_kind_of_lighting() {
+    let mesh = builtin_model("torus", None).unwrap().normalized();
+    let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
+    let base = scene(
+        mesh,
+        normals,
+        camera(DVec3::new(0.0, 1.5, 2.5), DVec3::ZERO, 50.0, 0.5, 20.0),
+    );
+    let mut kept = Renderer::new();
+    for (name, lights) in lights_variants() {
+        let s = Scene {
+            lights,
+            ..base.clone()
+        };
+        for cull in [true, false] {
+            let options = RenderOptions {
+                cull_backfaces: cull,
+                gouraud_specular: true,
+                ..options(120, 90, Shading::Flat)
+            };
+            check(&format!("torus-{name}-cull{cull}"), &mut kept, &s, &options);
+        }
+    }
+}
+
+#[test]
+fn clipped_scenes_odd_sizes_and_thread_counts() {
+    let mut kept = Renderer::new();
+    for (name, s) in &clipped_scenes() {
+        for (w, h) in [(1, 1), (9, 17), (160, 120), (100, 1)] {
+            let options = RenderOptions {
+                cull_backfaces: false,
+                ..options(w, h, Shading::Gouraud)
+            };
+            for threads in [1, 2] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| {
+                    check(
+                        &format!("{name}-{w}x{h}-{threads}t"),
+                        &mut kept,
+                        s,
+                        &options,
+                    )
+                });
+            }
+        }
+    }
+}
+
+#[test]
+fn modes_only_the_scanline_rasterizer_draws_render_three_frames() {
+    let mesh = builtin_model("sphere", None).unwrap().normalized();
+    let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
+    let s = scene(
+        mesh,
+        normals,
+        camera(DVec3::new(0.0, 0.5, 3.0), DVec3::ZERO, 40.0, 0.5, 20.0),
+    );
+    let mut kept = Renderer::new();
+    let base = options(64, 48, Shading::Phong);
+    for (name, options) in [
+        (
+            "scanline",
+            RenderOptions {
+                rasterizer: Rasterizer::Scanline,
+                ..base
+            },
+        ),
+        (
+            "whole-polygons",
+            RenderOptions {
+                rasterizer: Rasterizer::Scanline,
+                polygons: Polygons::Whole,
+                ..base
+            },
+        ),
+        (
+            "fixed-point",
+            RenderOptions {
+                rasterizer: Rasterizer::Scanline,
+                fixed_point_bits: Some(4),
+                ..base
+            },
+        ),
+        (
+            "palette",
+            RenderOptions {
+                rasterizer: Rasterizer::Scanline,
+                palette: Some(Palette {
+                    shades: 8,
+                    offset: 0,
+                }),
+                ..base
+            },
+        ),
+    ] {
+        check(name, &mut kept, &s, &options);
+    }
+}
+
+#[test]
+fn a_bad_request_is_refused_for_the_three_methods() {
+    let mesh = builtin_model("cube", None).unwrap();
+    let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
+    let mut s = scene(
+        mesh,
+        normals,
+        camera(DVec3::new(0.0, 0.5, 3.0), DVec3::ZERO, 40.0, 0.5, 20.0),
+    );
+    s.lights.push(Light {
+        kind: LightKind::Point {
+            position: Vec3::new(f32::NAN, 0.0, 0.0),
+        },
+        ..s.lights[0]
+    });
+    let mut images: [Image; 3] = std::array::from_fn(|_| Image::filled(2, 2, BACKGROUND));
+    let before = images.clone();
+    let [a, b, c] = &mut images;
+    let err = Renderer::new()
+        .render_methods(&s, &options(32, 32, Shading::Flat), [a, b, c])
+        .unwrap_err();
+    assert!(err.to_string().contains("light"), "{err}");
+    assert_eq!(images, before, "a refused request leaves the images alone");
+}

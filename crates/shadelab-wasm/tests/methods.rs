@@ -1,0 +1,130 @@
+//! The three panels in one call (`Engine::render_methods`, export
+//! `shadelab_render_methods`): the same pixels and the same frame reports
+//! as three engines drawing the three panels' texts, for built-in models,
+//! a user's file and modes only the scanline rasterizer draws; the text's
+//! own method's frame is the engine's last frame afterwards (the
+//! instruments draw on it); a bad scene is refused and changes nothing.
+
+use shadelab_core::Image;
+use shadelab_wasm::{abi, Engine, OverlaysRequest};
+
+const OCTAHEDRON: &[u8] = b"v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n\
+f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n";
+
+const METHODS: [&str; 3] = ["flat", "gouraud", "phong"];
+
+fn scene(model: &str, shading: &str, extra: &str) -> String {
+    format!("[model]\n{model}\n[render]\nwidth = 96\nheight = 80\nshading = \"{shading}\"\n{extra}")
+}
+
+/// The RGBA bytes of `image`, alpha 255.
+fn rgba(image: &Image) -> Vec<u8> {
+    image
+        .pixels()
+        .iter()
+        .flat_map(|p| [p.0[0], p.0[1], p.0[2], 255])
+        .collect()
+}
+
+#[test]
+fn three_panels_in_one_call_draw_what_three_engines_draw() {
+    let mut together = Engine::new();
+    together.load_file("octahedron.obj", OCTAHEDRON).unwrap();
+    let mut apart: Vec<Engine> = (0..3).map(|_| Engine::new()).collect();
+    for engine in &mut apart {
+        engine.load_file("octahedron.obj", OCTAHEDRON).unwrap();
+    }
+    for model in [
+        "source = \"teapot\"",
+        "source = \"torus\"\nnormals = \"angle\"\ncrease_angle = 20",
+        "source = \"octahedron.obj\"",
+    ] {
+        for extra in [
+            "",
+            "yaw = 33\npitch = -12\nzoom = 1.7\nspecular = \"blinn-phong\"\ncull_backfaces = false\ngouraud_specular = true\n",
+            "interpolation = \"screen\"\n",
+            "rasterizer = \"scanline\"\npolygons = \"whole\"\n",
+        ] {
+            for (own, own_method) in METHODS.into_iter().enumerate() {
+                let toml = scene(model, own_method, extra);
+                let frames = together.render_methods(&toml).unwrap();
+                for (k, method) in METHODS.into_iter().enumerate() {
+                    let text = scene(model, method, extra);
+                    let frame = apart[k].render(&text).unwrap();
+                    let want = apart[k].image().unwrap();
+                    assert_eq!(frames[k], frame, "{text}");
+                    assert_eq!(together.images()[k], rgba(want), "{text}");
+                }
+                // The text's own method's frame is the last frame.
+                assert_eq!(together.image().unwrap(), apart[own].image().unwrap(), "{toml}");
+                assert_eq!(together.rgba(), apart[own].rgba());
+            }
+        }
+    }
+    assert_eq!(together.counts().frames, 3 * 3 * 4 * 3);
+}
+
+#[test]
+fn instruments_draw_on_the_own_methods_frame() {
+    let toml = scene("source = \"sphere\"", "gouraud", "");
+    let overlays = OverlaysRequest {
+        overlays: "wireframe,light".into(),
+    };
+    let mut together = Engine::new();
+    together.render_methods(&toml).unwrap();
+    together.overlays(&overlays).unwrap();
+    let mut alone = Engine::new();
+    alone.render(&toml).unwrap();
+    alone.overlays(&overlays).unwrap();
+    assert_eq!(together.rgba(), alone.rgba());
+}
+
+#[test]
+fn a_bad_scene_is_refused_and_changes_nothing() {
+    let mut engine = Engine::new();
+    let good = scene("source = \"cube\"", "phong", "");
+    engine.render_methods(&good).unwrap();
+    let (image, images) = (engine.image().unwrap().clone(), engine.images().to_vec());
+    for bad in [
+        scene("source = \"cube\"", "phong", "width = 0\n"),
+        scene("source = \"nothing-here\"", "flat", ""),
+        scene("source = \"cube\"", "phong", "palette_offset = 3\n"),
+    ] {
+        let err = engine.render_methods(&bad).unwrap_err();
+        assert!(!err.0.is_empty());
+        assert_eq!(engine.image().unwrap(), &image, "{bad}");
+        assert_eq!(engine.images(), &images[..], "{bad}");
+    }
+}
+
+#[test]
+fn the_export_answers_three_frames_and_three_images() {
+    let parse = |s: String| -> serde_json::Value { serde_json::from_str(&s).unwrap() };
+    abi::set_input(b"[render]\nwidth = 20\nheight = 10\nshading = \"phong\"\n");
+    assert_eq!(abi::shadelab_render_methods(), abi::OK);
+    let answer = parse(abi::result_text());
+    let frames = answer["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 3);
+    for (k, frame) in frames.iter().enumerate() {
+        assert_eq!(
+            (frame["width"].as_u64(), frame["height"].as_u64()),
+            (Some(20), Some(10))
+        );
+        assert_eq!(abi::shadelab_image_len(k), 20 * 10 * 4);
+        assert!(!abi::shadelab_image(k).is_null());
+    }
+    // Flat lights per polygon, Gouraud per vertex, Phong per pixel.
+    assert!(frames[0]["cost"]["per_polygon"].as_u64().unwrap() > 0);
+    assert!(frames[1]["cost"]["per_vertex"].as_u64().unwrap() > 0);
+    assert!(frames[2]["cost"]["per_pixel"].as_u64().unwrap() > 0);
+    assert_eq!(abi::shadelab_image_len(3), 0);
+
+    abi::set_input(b"[render]\nheight = 0\n");
+    assert_eq!(abi::shadelab_render_methods(), abi::FAILED);
+    assert!(parse(abi::result_text())["error"]
+        .as_str()
+        .unwrap()
+        .contains("height"));
+    abi::set_input(b"\xff");
+    assert_eq!(abi::shadelab_render_methods(), abi::FAILED);
+}
