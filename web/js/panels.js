@@ -7,7 +7,7 @@
 // When the three panels draw the same scene with their three methods and
 // nothing else (no overlays, no error map), a `PanelGroup` asks the first
 // panel's worker for the three frames at once: the geometry is transformed,
-// set up and binned once instead of three times, and the other workers and
+// set up, binned and walked once instead of three times, and the other workers and
 // the second core stay free. Its frames reach each panel as its own would.
 import { t, plural, formatCount, formatNumber } from './i18n.js';
 import { el, beforeNextPaint, paintPending } from './dom.js';

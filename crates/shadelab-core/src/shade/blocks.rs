@@ -32,6 +32,11 @@ pub(crate) trait Shader: Sync {
     /// [`Shader::light`] (worth it when shading costs far more than
     /// queueing: Phong), rather than block by block with [`Shader::shade`].
     const DEFERRED: bool = false;
+    /// Whether the band also writes flat's and Gouraud's colours of the
+    /// fragments this (deferred) shader's triangles pass the depth test
+    /// with: the three methods in one walk of each triangle
+    /// ([`AllMethods`]).
+    const ALL_METHODS: bool = false;
     /// Colours of 8 queued fragments whose attributes are final (normals
     /// already turned for back faces). Only called when `DEFERRED`.
     fn light<S: Simd>(&self, lanes: &Self::Lanes<S>, s: S, attrs: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
@@ -249,5 +254,50 @@ impl OnePointLight {
             colors[g] = pack(out[g]);
         }
         colors
+    }
+}
+
+/// A Phong shader `P` whose band also writes flat's and Gouraud's colours
+/// of the same fragments, each into its own buffer: the three methods of
+/// one scene share coverage and depth, so each triangle is walked and
+/// depth-tested once for the three (see `raster/tiled/band`).
+pub(crate) struct AllMethods<'a, P>(pub &'a P);
+
+impl<P: Shader> Shader for AllMethods<'_, P> {
+    const ATTRS: usize = P::ATTRS;
+    const DEFERRED: bool = P::DEFERRED;
+    const ALL_METHODS: bool = true;
+    type Lanes<S: Simd> = P::Lanes<S>;
+
+    #[inline(always)]
+    fn lanes<S: Simd>(&self, s: S) -> P::Lanes<S> {
+        self.0.lanes(s)
+    }
+
+    #[inline(always)]
+    fn light<S: Simd>(&self, k: &P::Lanes<S>, s: S, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
+        self.0.light(k, s, a)
+    }
+
+    #[inline(always)]
+    fn light_groups<S: Simd, const G: usize>(
+        &self,
+        k: &P::Lanes<S>,
+        s: S,
+        a: [&[Vf<S>; MAX_ATTRS]; G],
+    ) -> [Vi<S>; G] {
+        self.0.light_groups(k, s, a)
+    }
+
+    #[inline(always)]
+    fn shade<S: Simd>(
+        &self,
+        k: &P::Lanes<S>,
+        s: S,
+        color: u32,
+        flip: f32,
+        a: &[Vf<S>; MAX_ATTRS],
+    ) -> Vi<S> {
+        self.0.shade(k, s, color, flip, a)
     }
 }

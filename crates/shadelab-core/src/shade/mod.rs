@@ -21,7 +21,9 @@ mod lanes;
 mod model;
 mod scalar;
 
-pub(crate) use self::blocks::{FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS};
+pub(crate) use self::blocks::{
+    AllMethods, FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS,
+};
 pub(crate) use self::lanes::byte_units;
 pub use self::model::{LightTerm, Lighting, LightingTerms, Terms};
 pub(crate) use self::scalar::{

@@ -44,12 +44,16 @@
 //!   Steps 1 and 2 do not depend on the method but for the attributes, so
 //!   `render_methods` runs them once with the attributes of all three
 //!   (Phong's normal and position, Gouraud's colours, flat's colour in the
-//!   triangle: `setup::ALL_ATTRS`), then each band fills its rows three
-//!   times, each shader reading its own planes. Every plane is solved on its
-//!   own and clipping interpolates each attribute on its own, so the bytes
-//!   and counts are those of three frames (`tests/methods.rs`). On meshes
-//!   of 70k–100k small triangles the three cost about two thirds of three
-//!   frames (WebAssembly, 480²); the three fills still walk each triangle.
+//!   triangle: `setup::ALL_ATTRS`). The three images share coverage and
+//!   depth too, so each band walks and depth-tests each triangle once:
+//!   Phong's shader drives the walk, and every block that passes the depth
+//!   test also writes flat's and Gouraud's colours into buffers of their
+//!   own ([`AllMethods`]). Every plane is solved on its own, clipping
+//!   interpolates each attribute on its own, and each method's colours are
+//!   computed with its own frame's operations, so the bytes and counts are
+//!   those of three frames (`tests/methods.rs`). On meshes of 70k–100k
+//!   small triangles the three cost about half of three frames
+//!   (WebAssembly, 480²), where setup is now the larger part.
 
 mod band;
 mod chunk;
@@ -60,10 +64,10 @@ use std::sync::{Mutex, MutexGuard};
 
 use rayon::prelude::*;
 
-use self::band::{band_rows, Band, Pass};
+use self::band::{band_rows, Band, Colors, Pass};
 
 use self::chunk::{clip_position, Chunk, Frame, Projected, SetupKernel};
-use self::setup::{plane_count, BAND_ROWS, GOURAUD_OF_ALL, PLANES};
+use self::setup::{plane_count, BAND_ROWS, PLANES};
 use self::vertices::{light_vertices, FaceNormals, VertexTable};
 
 use crate::clip::{is_inside, ClipVertex};
@@ -71,7 +75,7 @@ use crate::color::Rgb8;
 use crate::image::Image;
 use crate::raster::{guard_band, to_window, Rasterize};
 use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
-use crate::shade::{FlatShader, GouraudShader, Lighting, PhongShader, Shader};
+use crate::shade::{AllMethods, FlatShader, GouraudShader, Lighting, PhongShader, Shader};
 use crate::simd::{dispatch, Kernel, Simd, SimdLevel};
 
 /// Setup chunks per thread. A polygon's cost varies tenfold (a back face
@@ -111,14 +115,16 @@ pub(crate) struct TiledRasterizer {
 enum Output<'a> {
     /// Image rows, and the background colour packed as in the band.
     Image(&'a mut [Rgb8], i32),
+    /// The rows of flat's, Gouraud's and Phong's images, drawn at once
+    /// ([`AllMethods`]), and the background colour.
+    Methods([&'a mut [Rgb8]; 3], i32),
     /// Coverage counts.
     Counts(&'a mut [u32]),
 }
 
-/// One band's work, compiled per SIMD level. `ALL`: the bins hold the
-/// planes of the three methods at once (`PLANES` per triangle), of which
-/// the shader takes its own.
-struct BandKernel<'a, S, const ALL: bool> {
+/// One band's work, compiled per SIMD level. With [`AllMethods`] the bins
+/// hold the planes of the three methods at once (`PLANES` per triangle).
+struct BandKernel<'a, S> {
     band: &'a mut Band,
     index: usize,
     chunks: &'a [Chunk],
@@ -127,7 +133,7 @@ struct BandKernel<'a, S, const ALL: bool> {
     output: Output<'a>,
 }
 
-impl<S: Shader, const ALL: bool> Kernel for BandKernel<'_, S, ALL> {
+impl<S: Shader> Kernel for BandKernel<'_, S> {
     type Output = ();
 
     #[inline(always)]
@@ -135,7 +141,7 @@ impl<S: Shader, const ALL: bool> Kernel for BandKernel<'_, S, ALL> {
         let o = self.options;
         let (y0, y1) = band_rows(self.index, o.height);
         let pass = match self.output {
-            Output::Image(..) => Pass::Shade,
+            Output::Image(..) | Output::Methods(..) => Pass::Shade,
             Output::Counts(_) => Pass::Count,
         };
         let (x0, x1) = self
@@ -150,21 +156,13 @@ impl<S: Shader, const ALL: bool> Kernel for BandKernel<'_, S, ALL> {
         } else {
             0..0
         };
-        self.band.begin(o.width, y1 - y0, pass, columns);
-        let stride = if ALL { PLANES } else { plane_count(S::ATTRS) };
+        let all = S::ALL_METHODS;
+        self.band.begin(o.width, y1 - y0, pass, columns, all);
+        let stride = if all { PLANES } else { plane_count(S::ATTRS) };
         let lanes = self.shader.lanes(simd);
         for chunk in self.chunks {
             let bin = &chunk.bins[self.index];
             for (t, planes) in bin.triangles.iter().zip(bin.planes.chunks_exact(stride)) {
-                // Flat's depth and Phong's planes come first; Gouraud's are
-                // gathered (five copies of 12 bytes).
-                let gathered;
-                let planes = if ALL && S::ATTRS == 3 {
-                    gathered = GOURAUD_OF_ALL.map(|j| planes[j]);
-                    &gathered[..]
-                } else {
-                    planes
-                };
                 self.band.draw(
                     simd,
                     t,
@@ -181,7 +179,13 @@ impl<S: Shader, const ALL: bool> Kernel for BandKernel<'_, S, ALL> {
         self.band.flush(simd, self.shader, &lanes);
         match self.output {
             Output::Image(pixels, background) => {
-                self.band.finish(simd, pixels, o.width, background)
+                (self.band).finish(simd, pixels, o.width, background, Colors::Shader)
+            }
+            Output::Methods([flat, gouraud, phong], background) => {
+                let band = &mut *self.band;
+                band.finish(simd, flat, o.width, background, Colors::Flat);
+                band.finish(simd, gouraud, o.width, background, Colors::Gouraud);
+                band.finish(simd, phong, o.width, background, Colors::Shader);
             }
             Output::Counts(counts) => self.band.finish_counts(counts, o.width),
         }
@@ -202,9 +206,8 @@ fn scratch_band(scratch: &[Mutex<Band>]) -> MutexGuard<'_, Band> {
         .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-/// Runs one band of a pass with the shader `S`, compiled for the SIMD level
-/// (`ALL`: the bins were set up for the three methods at once).
-fn band_pass<S: Shader, const ALL: bool>(
+/// Runs one band of a pass with the shader `S`, compiled for the SIMD level.
+fn band_pass<S: Shader>(
     simd: SimdLevel,
     band: &mut Band,
     index: usize,
@@ -213,7 +216,7 @@ fn band_pass<S: Shader, const ALL: bool>(
     options: &RenderOptions,
     output: Output<'_>,
 ) {
-    let kernel = BandKernel::<S, ALL> {
+    let kernel = BandKernel::<S> {
         band,
         index,
         chunks,
@@ -282,25 +285,13 @@ impl Rasterize for TiledRasterizer {
             let band = &mut *guard;
             let output = Output::Image(pixels, background);
             match options.shading {
-                Shading::Flat => {
-                    band_pass::<_, false>(simd, band, index, chunks, &FlatShader, options, output)
+                Shading::Flat => band_pass(simd, band, index, chunks, &FlatShader, options, output),
+                Shading::Gouraud => {
+                    band_pass(simd, band, index, chunks, &GouraudShader, options, output)
                 }
-                Shading::Gouraud => band_pass::<_, false>(
-                    simd,
-                    band,
-                    index,
-                    chunks,
-                    &GouraudShader,
-                    options,
-                    output,
-                ),
                 Shading::Phong => match &phong.one_point_light {
-                    Some(one) => {
-                        band_pass::<_, false>(simd, band, index, chunks, one, options, output)
-                    }
-                    None => {
-                        band_pass::<_, false>(simd, band, index, chunks, phong, options, output)
-                    }
+                    Some(one) => band_pass(simd, band, index, chunks, one, options, output),
+                    None => band_pass(simd, band, index, chunks, phong, options, output),
                 },
             }
             (band.fragments, band.covered)
@@ -332,7 +323,7 @@ impl Rasterize for TiledRasterizer {
             .for_each(|(index, out)| {
                 let mut band = scratch_band(scratch);
                 let output = Output::Counts(out);
-                band_pass::<_, false>(simd, &mut band, index, chunks, &FlatShader, options, output);
+                band_pass(simd, &mut band, index, chunks, &FlatShader, options, output);
             });
         counts
     }
@@ -343,8 +334,9 @@ impl TiledRasterizer {
     /// Gouraud and Phong, into `images` (already of the right size), in
     /// that order; `options.shading` is not read. The same bytes and
     /// statistics as three frames of [`Rasterize::render`], for about the
-    /// cost of one frame's geometry and three fills: the vertex stage,
-    /// setup and binning run once, for the attributes of all three.
+    /// cost of one frame's geometry and one walk of its triangles: the
+    /// vertex stage, setup and binning run once, for the attributes of all
+    /// three, and each triangle is walked and depth-tested once.
     pub fn render_methods(
         &mut self,
         scene: &Scene,
@@ -366,33 +358,31 @@ impl TiledRasterizer {
             .zip(gouraud.pixels_mut().par_chunks_mut(rows))
             .zip(phong_image.pixels_mut().par_chunks_mut(rows))
             .enumerate();
-        // Each band's three fills one after the other, while its bins are
-        // in this thread's cache.
+        // One walk of each triangle: the three methods share coverage and
+        // depth, so the fragments and pixels drawn are the same for each.
         let totals = bands.map(|(index, ((f, g), p))| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
-            let mut counts = [(0, 0); 3];
-            let output = Output::Image(f, background);
-            band_pass::<_, true>(simd, band, index, chunks, &FlatShader, options, output);
-            counts[0] = (band.fragments, band.covered);
-            let output = Output::Image(g, background);
-            band_pass::<_, true>(simd, band, index, chunks, &GouraudShader, options, output);
-            counts[1] = (band.fragments, band.covered);
-            let output = Output::Image(p, background);
+            let output = Output::Methods([f, g, p], background);
             match &phong.one_point_light {
-                Some(one) => band_pass::<_, true>(simd, band, index, chunks, one, options, output),
-                None => band_pass::<_, true>(simd, band, index, chunks, phong, options, output),
+                Some(one) => {
+                    band_pass(simd, band, index, chunks, &AllMethods(one), options, output)
+                }
+                None => band_pass(
+                    simd,
+                    band,
+                    index,
+                    chunks,
+                    &AllMethods(phong),
+                    options,
+                    output,
+                ),
             }
-            counts[2] = (band.fragments, band.covered);
-            counts
+            (band.fragments, band.covered)
         });
-        let sums = totals.reduce(
-            || [(0, 0); 3],
-            |a, b| std::array::from_fn(|k| (a[k].0 + b[k].0, a[k].1 + b[k].1)),
-        );
+        let (fragments, covered) = totals.reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
         let (flat_evaluations, vertex_evaluations) = self.evaluations;
         std::array::from_fn(|k| {
-            let (fragments, covered) = sums[k];
             let lighting_evaluations = match k {
                 0 => flat_evaluations,
                 1 => vertex_evaluations,
@@ -473,7 +463,7 @@ impl TiledRasterizer {
             let band = band
                 .get_mut()
                 .unwrap_or_else(|poisoned| poisoned.into_inner());
-            band.reserve(options.width);
+            band.reserve(options.width, method.is_none());
         }
         let chunk_count = (rayon::current_num_threads() * SETUP_CHUNKS_PER_THREAD).max(1);
         self.chunks.resize_with(chunk_count, Chunk::default);

@@ -38,6 +38,12 @@
 //! for Phong, whose eight planes would mostly be evaluated for rows whose
 //! blocks are hidden).
 //!
+//! The three methods at once ([`Shader::ALL_METHODS`]): Phong's walk as
+//! above, and each block that passes the depth test also gets flat's and
+//! Gouraud's colours, computed as their own blocks would compute them and
+//! blended into two more colour buffers; `finish` then reads each buffer
+//! into its image (the depth, and so what is background, is the same).
+//!
 //! Nothing here allocates. Everything is `#[inline(always)]` so that
 //! [`crate::simd::dispatch`] compiles it for AVX2 and for the portable path.
 
@@ -48,9 +54,9 @@ mod queue;
 
 use std::ops::Range;
 
-use super::setup::{plane_count, Plane, Triangle, Walk, BAND_ROWS};
+use super::setup::{plane_count, Plane, Triangle, Walk, BAND_ROWS, GOURAUD_OF_ALL};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
-use crate::shade::{Shader, MAX_ATTRS};
+use crate::shade::{FlatShader, GouraudShader, Shader, MAX_ATTRS};
 use crate::simd::{Simd, Vf, Vi};
 
 /// A band's working storage, kept between frames.
@@ -70,6 +76,11 @@ pub(crate) struct Band {
     /// Packed colours; pixel `i`'s is at `color_at + i` (see [`skew`]).
     color: Vec<i32>,
     color_at: usize,
+    /// Flat's and Gouraud's packed colours when the shader draws the three
+    /// methods at once ([`Shader::ALL_METHODS`]); pixel `i`'s at
+    /// `others_at[k] + i`.
+    others: [Vec<i32>; 2],
+    others_at: [usize; 2],
     /// Coverage counts (coverage pass only).
     pub counts: Vec<u32>,
     /// Polygon stamps for self-crossing polygons, cleared when first used in a frame.
@@ -126,6 +137,17 @@ struct Pending {
     len: usize,
 }
 
+/// Which of a band's colour buffers [`Band::finish`] reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Colors {
+    /// The shader's own.
+    Shader,
+    /// Flat's, drawn beside Phong's ([`Shader::ALL_METHODS`]).
+    Flat,
+    /// Gouraud's, drawn beside Phong's.
+    Gouraud,
+}
+
 /// What a band pass does with covered pixels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Pass {
@@ -140,7 +162,8 @@ impl Band {
     /// every thread's band before a frame: which thread draws which band
     /// varies, and a thread that drew none for many frames would otherwise
     /// allocate when it first does (a frame after the first must not).
-    pub fn reserve(&mut self, width: u32) {
+    /// `all_methods`: room for flat's and Gouraud's colours too.
+    pub fn reserve(&mut self, width: u32, all_methods: bool) {
         fn room<T>(buffer: &mut Vec<T>, len: usize) {
             buffer.reserve(len.saturating_sub(buffer.len()));
         }
@@ -148,6 +171,11 @@ impl Band {
         room(&mut self.depth, len);
         room(&mut self.color, len + SKEW_ROOM);
         room(&mut self.stamp, len);
+        if all_methods {
+            for buffer in &mut self.others {
+                room(buffer, len + SKEW_ROOM);
+            }
+        }
     }
 
     /// Prepares the buffers for a frame of `width` pixels per row, whose
@@ -155,7 +183,15 @@ impl Band {
     /// hold those columns are cleared, and [`Band::finish`] reads back only
     /// those (the rest is background); the colour buffer is not cleared:
     /// `finish` takes the background wherever the depth is still 1.
-    pub fn begin(&mut self, width: u32, rows: u32, pass: Pass, columns: Range<usize>) {
+    /// `all_methods`: flat's and Gouraud's buffers are drawn too.
+    pub fn begin(
+        &mut self,
+        width: u32,
+        rows: u32,
+        pass: Pass,
+        columns: Range<usize>,
+        all_methods: bool,
+    ) {
         self.stride = (width as usize).next_multiple_of(8);
         let len = self.stride * rows as usize;
         self.fragments = 0;
@@ -170,6 +206,12 @@ impl Band {
                 self.color.resize(len + SKEW_ROOM, 0);
                 self.depth.resize(len, 1.0);
                 self.color_at = skew(&self.depth, &self.color);
+                if all_methods {
+                    for (buffer, at) in self.others.iter_mut().zip(&mut self.others_at) {
+                        buffer.resize(len + SKEW_ROOM, 0);
+                        *at = skew(&self.depth, buffer);
+                    }
+                }
                 for row in self.depth.chunks_exact_mut(self.stride) {
                     row[self.columns.clone()].fill(1.0);
                 }
@@ -181,9 +223,9 @@ impl Band {
         }
     }
 
-    /// Copies the finished band into its rows of the image (the background
-    /// where the depth is still 1, or outside the drawn columns) and counts
-    /// the pixels drawn.
+    /// Copies the finished band's `colors` into its rows of the image (the
+    /// background where the depth is still 1, or outside the drawn columns)
+    /// and counts the pixels drawn.
     #[inline(always)]
     pub fn finish<S: Simd>(
         &mut self,
@@ -191,7 +233,13 @@ impl Band {
         out: &mut [crate::color::Rgb8],
         width: u32,
         background: i32,
+        colors: Colors,
     ) {
+        let (color, color_at) = match colors {
+            Colors::Shader => (&self.color, self.color_at),
+            Colors::Flat => (&self.others[0], self.others_at[0]),
+            Colors::Gouraud => (&self.others[1], self.others_at[1]),
+        };
         let width = width as usize;
         let mut covered = 0;
         let (far, background) = (Vf::splat(s, 1.0), Vi::splat(s, background));
@@ -212,7 +260,7 @@ impl Band {
             }
             let pixels = start + 8 * drawn.start..start + 8 * drawn.end;
             let depths = self.depth[pixels.clone()].chunks_exact(8);
-            let colors = self.color[self.color_at..][pixels].chunks_exact(8);
+            let colors = color[color_at..][pixels].chunks_exact(8);
             for ((block, depth), color) in middle.chunks_exact_mut(24).zip(depths).zip(colors) {
                 let depth = Vf::load(s, depth.try_into().unwrap());
                 let drawn = depth.lt(far);
@@ -228,7 +276,7 @@ impl Band {
                 let at = start + done + j;
                 let c = if self.columns.contains(&(done + j)) && self.depth[at] < 1.0 {
                     covered += 1;
-                    self.color[self.color_at + at]
+                    color[color_at + at]
                 } else {
                     bg[0]
                 };
@@ -483,6 +531,9 @@ impl Band {
         if bits == 0 {
             return 0;
         }
+        if Sh::ALL_METHODS {
+            self.flat_and_gouraud(s, f, x, row.dy, pass, at);
+        }
         if bits == 0xff {
             // A whole block (inside large triangles): no packing needed.
             let index = Vi::ramp(s) + Vi::splat(s, at as i32);
@@ -491,6 +542,49 @@ impl Band {
             self.pend(s, f, x, row.dy, bits, at);
         }
         bits.count_ones()
+    }
+
+    /// Flat's and Gouraud's colours of the lanes `pass` of a block (columns
+    /// `x` from the triangle's first, `dy` rows down, buffer index `at`) of
+    /// a triangle set up for the three methods at once: with the
+    /// operations of their own frames' blocks (`shade_block`, the planes'
+    /// values at the row as `origin + dy·rows`), so the bytes are the same.
+    #[inline(always)]
+    fn flat_and_gouraud<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        x: Vf<S>,
+        dy: f32,
+        pass: Vi<S>,
+        at: usize,
+    ) {
+        let none = [Vf::splat(s, 0.0); MAX_ATTRS];
+        let flat = FlatShader.shade(&(), s, f.t.color, f.t.flip, &none);
+        let plane = |j: usize| &f.planes[GOURAUD_OF_ALL[j]];
+        let at_row = |j: usize| Vf::splat(s, plane(j).at_origin + plane(j).dy * dy);
+        let dx = |j: usize| Vf::splat(s, plane(j).dx);
+        let mut colors = none;
+        match f.interpolation {
+            Interpolation::Perspective => {
+                let w = x.mul_add(dx(1), at_row(1)).recip();
+                for k in 0..3 {
+                    colors[k] = x.mul_add(dx(2 + k), at_row(2 + k)) * w;
+                }
+            }
+            Interpolation::Screen => {
+                for k in 0..3 {
+                    colors[k] = x.mul_add(dx(2 + k), at_row(2 + k));
+                }
+            }
+        }
+        let gouraud = GouraudShader.shade(&(), s, f.t.color, f.t.flip, &colors);
+        for (k, colors) in [flat, gouraud].into_iter().enumerate() {
+            let slot = &mut self.others[k][self.others_at[k] + at..][..8];
+            let slot: &mut [i32; 8] = slot.try_into().unwrap();
+            let old = Vi(s.i_load(slot), s);
+            s.i_store(Vi::select(pass, colors, old).0, slot);
+        }
     }
 
     /// The depth and colour buffers from buffer index `at`, `len` pixels.
