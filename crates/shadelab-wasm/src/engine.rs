@@ -323,12 +323,9 @@ impl Engine {
             .render_into(scene, &options, image)
             .map_err(|e| EngineError(e.to_string()))?;
         rgba_of(image, &mut self.rgba);
-        self.counts.frames += 1;
-        self.options = Some(options);
-        self.frame_toml.clear();
-        self.frame_toml.push_str(toml);
-        self.errors = None;
-        Ok(frame_info(scene, &options, stats))
+        let info = frame_info(scene, &options, stats);
+        self.drawn(toml, options, 1);
+        Ok(info)
     }
 
     /// Renders the scene `toml` with each method, flat, Gouraud and Phong,
@@ -370,18 +367,25 @@ impl Engine {
         std::mem::swap(last, &mut self.methods[own]);
         self.rgba.clear();
         self.rgba.extend_from_slice(&self.images[own]);
-        self.counts.frames += 3;
-        self.options = Some(options);
-        self.frame_toml.clear();
-        self.frame_toml.push_str(toml);
-        self.errors = None;
-        Ok(std::array::from_fn(|k| {
+        let infos = std::array::from_fn(|k| {
             let options = RenderOptions {
                 shading: Shading::ALL[k],
                 ..options
             };
             frame_info(scene, &options, stats[k])
-        }))
+        });
+        self.drawn(toml, options, 3);
+        Ok(infos)
+    }
+
+    /// Records `frames` frames of the scene `toml` drawn (the last with
+    /// `options`): the instruments that follow read this frame.
+    fn drawn(&mut self, toml: &str, options: RenderOptions, frames: u64) {
+        self.counts.frames += frames;
+        self.options = Some(options);
+        self.frame_toml.clear();
+        self.frame_toml.push_str(toml);
+        self.errors = None;
     }
 
     /// Reads the scene `toml`, preparing its model again only when its

@@ -3,9 +3,12 @@
 //! (`explain`, `profile`, `errors`, `--overlay`, `quad`) give for the same
 //! scene text, so the viewer and the command line cannot drift apart.
 
+mod common;
+
 use std::path::Path;
 
-use shadelab_core::{render, Image, RenderOptions, Scene, Shading};
+use common::rgba;
+use shadelab_core::{render, RenderOptions, Scene, Shading};
 use shadelab_io::SceneFile;
 use shadelab_lab::{
     draw_overlays, error_maps, exact_image, heat_bar, heat_scale, inspect, inspection_text,
@@ -27,14 +30,6 @@ fn resolved(toml: &str) -> (SceneFile, Scene, RenderOptions) {
     let file = SceneFile::parse(toml, "scene").unwrap();
     let (scene, options) = file.resolve(Path::new("")).unwrap();
     (file, scene, options)
-}
-
-fn rgba(image: &Image) -> Vec<u8> {
-    image
-        .pixels()
-        .iter()
-        .flat_map(|p| [p.0[0], p.0[1], p.0[2], 255])
-        .collect()
 }
 
 #[test]

@@ -5,7 +5,9 @@
 //! own method's frame is the engine's last frame afterwards (the
 //! instruments draw on it); a bad scene is refused and changes nothing.
 
-use shadelab_core::Image;
+mod common;
+
+use common::rgba;
 use shadelab_wasm::{abi, Engine, OverlaysRequest};
 
 const OCTAHEDRON: &[u8] = b"v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n\
@@ -15,15 +17,6 @@ const METHODS: [&str; 3] = ["flat", "gouraud", "phong"];
 
 fn scene(model: &str, shading: &str, extra: &str) -> String {
     format!("[model]\n{model}\n[render]\nwidth = 96\nheight = 80\nshading = \"{shading}\"\n{extra}")
-}
-
-/// The RGBA bytes of `image`, alpha 255.
-fn rgba(image: &Image) -> Vec<u8> {
-    image
-        .pixels()
-        .iter()
-        .flat_map(|p| [p.0[0], p.0[1], p.0[2], 255])
-        .collect()
 }
 
 #[test]

@@ -133,11 +133,7 @@ impl Band {
                 block[k] = Vf::load(s, q.attrs[k][8 * g..8 * g + 8].try_into().unwrap());
             }
         }
-        let mut refs = [&blocks[0]; LIT_GROUPS];
-        for (g, r) in refs.iter_mut().enumerate() {
-            *r = &blocks[g];
-        }
-        let colors = shader.light_groups(lanes, s, refs);
+        let colors = shader.light_groups(lanes, s, blocks.each_ref());
         let count = q.len.min(QUEUE_LIT);
         for (g, colors) in colors.into_iter().enumerate() {
             let n = count.saturating_sub(8 * g).min(8);
