@@ -7,13 +7,19 @@
 //   node run.js [--bin LABEL=PATH]... [--models teapot,bunny,dragon]
 //               [--rounds 3] [--steps 20] [--poll busy|light] [--json FILE]
 //
-// `--poll busy` (the default, the measure as first written) polls in a
-// loop of tasks, reading the three canvases whole each time (1.5–5 ms a
-// round on this 2-core machine): on two cores it keeps one busy while the
-// workers draw, and a frame's answer waits for the round in progress.
-// `--poll light` polls once a millisecond and reads 8 rows of each canvas
-// (the whole canvas every 10th round): the same event, seen with the
-// page's thread mostly idle, as a user's is.
+// `--parts N` after a `--bin` makes that binary's page draw panels drawn
+// together in N parts of their rows, each by its own worker (the page's
+// choice otherwise: 2 on two cores or more); a binary may be given twice
+// with two labels to compare.
+//
+// `--poll light` (the default) polls once a millisecond and reads 8 rows
+// of each canvas (the whole canvas every 10th round): the event is seen
+// with the page's thread mostly idle, as a user's is. `--poll busy` (the
+// measure as first written) polls in a loop of tasks, reading the three
+// canvases whole each time (1.5–5 ms a round on a 2-core machine): it keeps
+// one core busy while the workers draw (on two cores, one of the two that
+// draw the halves of a frame), and a frame's answer waits for the round in
+// progress.
 //
 // Each `--bin` is a `shadelab` binary (default: this tree's
 // target/release/shadelab), started as `shadelab view --port 0 --no-open`;
@@ -44,7 +50,7 @@ const MODELS = {
 const METHODS = ['flat', 'gouraud', 'phong'];
 
 function parseArgs(argv) {
-  const args = { bins: [], models: ['teapot', 'bunny', 'dragon'], rounds: 3, steps: 20, warmup: 5, poll: 'busy', json: null };
+  const args = { bins: [], models: ['teapot', 'bunny', 'dragon'], rounds: 3, steps: 20, warmup: 5, poll: 'light', json: null };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
     const value = () => argv[++i];
@@ -58,7 +64,10 @@ function parseArgs(argv) {
     else if (a === '--warmup') args.warmup = Number(value());
     else if (a === '--poll') args.poll = value();
     else if (a === '--json') args.json = value();
-    else throw new Error(`unknown argument ${a}`);
+    else if (a === '--parts') {
+      if (!args.bins.length) throw new Error('--parts follows the --bin it is for');
+      args.bins.at(-1).parts = Number(value());
+    } else throw new Error(`unknown argument ${a}`);
   }
   if (!args.bins.length) args.bins.push({ label: 'this tree', path: path.join(ROOT, 'target/release/shadelab') });
   for (const m of args.models) if (!MODELS[m]) throw new Error(`unknown model ${m}`);
@@ -230,7 +239,7 @@ async function main() {
     executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
     headless: true,
     args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync'],
+      '--disable-component-update', '--disable-sync', ...(process.env.CHROMIUM_FLAGS ?? '').split(' ').filter(Boolean)],
   });
   // The page's hooks for tests (frame times, idle) exist only under this flag.
   await context.addInitScript(() => {
@@ -246,6 +255,10 @@ async function main() {
           const k = round % 2 ? args.bins.length - 1 - b : b;
           const row = rows[k];
           const { page, size } = await openModel(context, servers[k].url, model);
+          if (args.bins[k].parts) {
+            await page.evaluate((n) => window.shadelab.drawTogether('auto', n), args.bins[k].parts);
+            await page.evaluate(() => window.shadelab.idle());
+          }
           row.size = size;
           row.isolated = await page.evaluate(() => globalThis.crossOriginIsolated === true);
           row.load.push(os.loadavg()[0]);

@@ -3,7 +3,8 @@
 // MODULE.wasm is the viewer's module (target/viewer-wasm/wasm32-unknown-unknown/wasm/shadelab_wasm.wasm,
 // built by `cargo build --release`). Each method draws the page's default scene (480×480), the
 // camera turned 5° a frame as an orbit step turns it, 3 frames of warm-up, median of FRAMES (30);
-// then the three methods in one call (`renderMethods`, as the page draws panels that share a scene).
+// then the three methods in one call (`renderMethods`, as the page draws panels that share a scene),
+// and each half of their rows in an engine of its own (as two workers draw them on two cores).
 import fs from 'node:fs';
 import path from 'node:path';
 import { Shadelab } from '../../web/js/shadelab.js';
@@ -75,6 +76,20 @@ for (const model of models.length ? models : ['teapot']) {
     }
     times.sort((a, b) => a - b);
     row.push(`three at once ${times[times.length >> 1].toFixed(2)} ms`);
+    // As the page draws them on two cores: each half of the rows by an engine of its own.
+    const halves = [];
+    for (const part of [0, 1]) {
+      const half = await Shadelab.create(module);
+      if (model !== 'teapot') half.loadFile(source, fs.readFileSync(model));
+      const times = [];
+      for (let i = 0; i < frames + 3; i++) {
+        const { ms } = half.renderMethods(scene.replace('yaw = 0.0', `yaw = ${(i * 5) % 360}.0`), [], [part, 2]);
+        if (i >= 3) times.push(ms);
+      }
+      times.sort((a, b) => a - b);
+      halves.push(times[times.length >> 1].toFixed(2));
+    }
+    row.push(`halves ${halves.join(' + ')} ms`);
   }
   console.log(source.padEnd(20), row.join('  '));
 }

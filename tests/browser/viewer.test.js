@@ -309,7 +309,7 @@ test('a file is parsed once: one panel parses it, the others take its mesh, and 
     assert.ok(worst <= 1, `${m}: differs from shadelab render by up to ${worst}`);
   }
   // Orbiting draws; it neither parses nor prepares the model, nor reads the scene text again.
-  await page.evaluate(() => window.shadelab.drawTogether(true));
+  await page.evaluate(() => window.shadelab.drawTogether(true, 2));
   await settle(page);
   const still = await page.evaluate(() => window.shadelab.counts());
   await page.locator('.panel[data-method="phong"] canvas').focus();
@@ -318,13 +318,14 @@ test('a file is parsed once: one panel parses it, the others take its mesh, and 
     await settle(page);
   }
   const orbited = await page.evaluate(() => window.shadelab.counts());
-  // The three panels share the scene: the first panel's worker draws the
-  // three methods of each frame in one call, the others rest.
-  const drawn = { flat: 3, gouraud: 0, phong: 0 };
+  // The three panels share the scene: as on two cores, the first two
+  // panels' workers each draw half the rows of the three methods of each
+  // frame in one call, the third rests.
+  const drawn = { flat: 3, gouraud: 3, phong: 0 };
   for (const m of METHODS) {
     assert.equal(orbited[m].files_parsed + orbited[m].files_adopted, still[m].files_parsed + still[m].files_adopted, m);
     assert.equal(orbited[m].models_prepared, still[m].models_prepared, `${m}: the model was prepared again`);
-    assert.equal(orbited[m].frames - still[m].frames, 3 * drawn[m], `${m}: three frames per key in one worker`);
+    assert.equal(orbited[m].frames - still[m].frames, 3 * drawn[m], `${m}: three frames (or their halves) per key`);
     assert.equal(orbited[m].camera_turns - still[m].camera_turns, drawn[m], `${m}: the camera turned`);
     assert.equal(orbited[m].scenes_read, still[m].scenes_read, `${m}: the scene text was read again`);
   }
@@ -335,25 +336,49 @@ test('a file is parsed once: one panel parses it, the others take its mesh, and 
 
 test('the three panels of one scene are drawn in one request, with the pixels of three', async () => {
   const { page, problems } = await openViewer('#model=torus&yaw=20&pitch=15&shininess=48');
-  // As on two cores (the default there; with more, each worker draws its own).
-  await page.evaluate(() => window.shadelab.drawTogether(true));
+  // As on one core: the first panel's worker draws the three frames whole.
+  await page.evaluate(() => window.shadelab.drawTogether(true, 1));
   await settle(page);
   const frames = async () => {
     const c = await page.evaluate(() => window.shadelab.counts());
     return Object.fromEntries(METHODS.map((m) => [m, c[m].frames]));
   };
+  /** Each worker's frames drawn while `steps` run. */
+  const drawnBy = async (steps) => {
+    const before = await frames();
+    await steps();
+    const after = await frames();
+    return Object.fromEntries(METHODS.map((m) => [m, after[m] - before[m]]));
+  };
   const together = () => page.evaluate(() => window.shadelab.panels.map((p) => !!p.last.together));
-  const before = await frames();
-  for (let i = 1; i <= 4; i++) await update(page, `s.camera.yaw = ${20 + 7 * i}`);
-  const after = await frames();
   assert.deepEqual(
-    Object.fromEntries(METHODS.map((m) => [m, after[m] - before[m]])),
+    await drawnBy(async () => {
+      for (let i = 1; i <= 4; i++) await update(page, `s.camera.yaw = ${20 + 7 * i}`);
+    }),
     { flat: 12, gouraud: 0, phong: 0 },
     "the first panel's worker drew the three methods of each frame",
   );
   assert.deepEqual(await together(), [true, true, true]);
   const shared = await digests(page);
   const stats = await page.evaluate(() => window.shadelab.panels.map((p) => p.last.stats));
+  const costs = () => page.evaluate(() => window.shadelab.panels.map((p) => p.last.cost));
+  const cost = await costs();
+  // As on two cores (the default there): two workers, each half the rows of
+  // the three; the same pictures and counts, the halves' pixels added up.
+  await page.evaluate(() => window.shadelab.drawTogether(true, 2));
+  await settle(page);
+  assert.deepEqual(
+    await drawnBy(async () => {
+      for (let i = 5; i <= 8; i++) await update(page, `s.camera.yaw = ${20 + 7 * i}`);
+      await update(page, 's.camera.yaw = 48');
+    }),
+    { flat: 15, gouraud: 15, phong: 0 },
+    'the first two panels\' workers each drew part of the three methods of each frame',
+  );
+  assert.deepEqual(await together(), [true, true, true]);
+  assert.deepEqual(await digests(page), shared);
+  assert.deepEqual(await page.evaluate(() => window.shadelab.panels.map((p) => p.last.stats)), stats);
+  assert.deepEqual(await costs(), cost);
   // The Cost tab compares the methods' times: the panels are drawn apart, and
   // the pictures and counts are the same.
   await page.evaluate(() => window.shadelab.setTab('cost'));

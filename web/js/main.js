@@ -97,6 +97,12 @@ const shownState = () => {
  * together in one worker (dragon, 480²: 8.4 ms against 13.5 in WebAssembly).
  */
 const FEW_CORES = (navigator.hardwareConcurrency ?? 1) < 3;
+/**
+ * Drawn together on two cores, the first two panels' workers each draw half
+ * of the three frames' rows at the same time (dragon, 480², in Chromium:
+ * see BENCHMARKS.md, "Two workers, half the rows each").
+ */
+const GROUP_PARTS = (navigator.hardwareConcurrency ?? 1) >= 2 ? 2 : 1;
 /** `auto` (by the cores), or `true`/`false` as a test sets it. */
 let together = 'auto';
 const drawnTogether = (errors) =>
@@ -535,7 +541,7 @@ async function start() {
     panel.onframe = panelFrame;
     return panel;
   });
-  group = new PanelGroup(panels);
+  group = new PanelGroup(panels, GROUP_PARTS);
   group.onerror = panelError;
   exactPanel = new ImagePanel('exact', figures.find((f) => f.dataset.method === 'exact'));
   holdPaintWorkWhile(() => panels.some((p) => p.busy));
@@ -637,9 +643,14 @@ function exposeForTests() {
     get profile() { return side.tools.profile.data; },
     get quad() { return side.tools.quad.data; },
     frameTimes: () => Object.fromEntries(panels.map((p) => [p.method, [...p.times]])),
-    /** Whether panels that share a scene are drawn in one request: `auto` (fewer than three cores), true or false. */
-    drawTogether(mode) {
+    /**
+     * Whether panels that share a scene are drawn in one request: `auto`
+     * (fewer than three cores), true or false; and, when given, by how many
+     * workers, each drawing a part of the rows.
+     */
+    drawTogether(mode, parts = group.parts) {
       together = mode;
+      group.parts = parts;
       render();
     },
     /** The scene each panel was last asked to draw. */

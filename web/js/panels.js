@@ -5,13 +5,16 @@
 // between frames.
 //
 // When the three panels draw the same scene with their three methods and
-// nothing else (no overlays, no error map), a `PanelGroup` asks the first
-// panel's worker for the three frames at once: the geometry is transformed,
-// set up, binned and walked once instead of three times, and the other workers and
-// the second core stay free. Its frames reach each panel as its own would.
+// nothing else (no overlays, no error map), a `PanelGroup` asks for the three
+// frames at once: the geometry is transformed, set up, binned and walked once
+// instead of three times. With two cores, the first two panels' workers each
+// draw half of the three frames' rows (`part`), at the same time, and the
+// halves are joined here; with one, the first panel's worker draws them
+// whole. Its frames reach each panel as its own would.
 import { t, plural, formatCount, formatNumber } from './i18n.js';
 import { el, beforeNextPaint, paintPending } from './dom.js';
 import { Marks } from './marks.js';
+import { joinParts } from './shadelab.js';
 
 /** How many recent frame times each panel keeps (for the page and its tests). */
 const HISTORY = 240;
@@ -284,17 +287,22 @@ export class Panel {
 }
 
 /**
- * The three panels drawn in one request to the first panel's worker (see
- * the top of this file). Like a panel, it draws the newest request and
- * drops the ones replaced while a frame was being drawn; while its frame is
- * drawn, the panels' own requests wait, and a panel's own frame that was on
- * its way is dropped if the group's is newer.
+ * The three panels drawn in one request (see the top of this file): to the
+ * first panel's worker, or in `parts` parts of their rows to as many panels'
+ * workers at once. Like a panel, it draws the newest request and drops the
+ * ones replaced while a frame was being drawn; while its frame is drawn, the
+ * panels' own requests wait, and a panel's own frame that was on its way is
+ * dropped if the group's is newer.
  */
 export class PanelGroup {
-  constructor(panels) {
+  constructor(panels, parts = 1) {
     this.panels = panels;
+    /** How many workers draw a frame's rows, 1 to the number of panels. */
+    this.parts = parts;
     this.pending = null;
     this.busy = false;
+    /** Each part's pixel buffers of the last frame, given back to its worker for the next. */
+    this.partSpares = [];
     this.onerror = () => {};
   }
 
@@ -302,6 +310,43 @@ export class PanelGroup {
   render(request) {
     this.pending = request;
     if (!this.busy) this.#next();
+  }
+
+  /**
+   * The three frames of `scene`, {frames, ms, at}: from the first panel's
+   * worker, or in parts (`ms` then the slowest part's, as they are drawn at
+   * the same time).
+   */
+  async #draw(scene, spares) {
+    const parts = Math.max(1, Math.min(this.parts, this.panels.length));
+    if (parts === 1) {
+      const answer = await this.panels[0].ask(
+        { type: 'render-methods', scene, spares },
+        spares.filter((s) => s),
+      );
+      return answer;
+    }
+    const given = this.partSpares;
+    this.partSpares = [];
+    const answers = await Promise.all(
+      Array.from({ length: parts }, (_, k) => {
+        const back = given[k] ?? [];
+        return this.panels[k].ask({ type: 'render-methods', scene, part: [k, parts], spares: back }, back.filter((s) => s));
+      }),
+    );
+    const frames = [0, 1, 2].map((m) =>
+      joinParts(answers.map((a) => ({ frame: a.frames[m], rows: a.rows })), spares[m]),
+    );
+    const shown = new Set(frames.map((f) => f.pixels.buffer));
+    this.partSpares = answers.map((a) => a.frames.map((f) => (shown.has(f.pixels.buffer) ? null : f.pixels.buffer)));
+    return {
+      frames,
+      ms: Math.max(...answers.map((a) => a.ms)),
+      at: {
+        received: Math.min(...answers.map((a) => a.at.received)),
+        posted: Math.max(...answers.map((a) => a.at.posted)),
+      },
+    };
   }
 
   async #next() {
@@ -316,10 +361,7 @@ export class PanelGroup {
       const { generation, gouraudSpecular, scene } = request;
       const spares = this.panels.map((p) => p.takeSpare());
       const sent = performance.timeOrigin + performance.now();
-      const answer = await this.panels[0].ask(
-        { type: 'render-methods', scene, spares },
-        spares.filter((s) => s),
-      );
+      const answer = await this.#draw(scene, spares);
       const arrived = performance.timeOrigin + performance.now();
       answer.frames.forEach((frame, k) => {
         frame.ms = answer.ms;

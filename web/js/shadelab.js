@@ -88,18 +88,25 @@ export class Shadelab {
    * but without `ms` (`ms` is the call's, the three together); `spares`,
    * up to three ArrayBuffers of earlier frames of this size, are reused for
    * the pixels. The text's own method's frame becomes the last frame.
+   *
+   * With `part` = [k, n], only part k of n of the frames' rows is drawn
+   * (`shadelab_render_methods_part`): the answer's `rows` = [first, end]
+   * says which, each frame's `pixels` hold those rows, and its counts are
+   * the frame's but for its rows' pixels (`stats.fragments_shaded`,
+   * `stats.covered_pixels`, `cost.per_pixel`, in `stats.lighting_evaluations`
+   * too), which the parts add up to (see `joinParts`). No last frame is kept.
    */
-  renderMethods(sceneToml, spares = []) {
+  renderMethods(sceneToml, spares = [], part = null) {
     const text = encoder.encode(sceneToml);
     this.#input(text.length, (view) => view.set(text));
     const start = performance.now();
-    const status = this.x.shadelab_render_methods();
+    const status = part ? this.x.shadelab_render_methods_part(part[0], part[1]) : this.x.shadelab_render_methods();
     const ms = performance.now() - start;
-    const { frames } = this.#call(status);
+    const { frames, rows } = this.#call(status);
     frames.forEach((frame, k) => {
       frame.pixels = this.#copy(this.x.shadelab_image(k), this.x.shadelab_image_len(k), spares[k]);
     });
-    return { frames, ms };
+    return { frames, ms, rows: rows ?? [0, frames[0].height] };
   }
 
   /** A copy of `length` bytes at `start` of the memory, in `spare` when it is an ArrayBuffer of that size. */
@@ -194,4 +201,34 @@ export class Shadelab {
     }
     return answer;
   }
+}
+
+/**
+ * One frame from its parts (`renderMethods` with `part`), each `{frame,
+ * rows}` with `frame` one method's part: the rows one under the other, in
+ * `spare` when it is an ArrayBuffer of the frame's size, and the parts'
+ * pixel counts added up. A part drawn whole (rows from 0 to the height: a
+ * mode of the scanline rasterizer) is the frame.
+ */
+export function joinParts(parts, spare = null) {
+  const drawn = parts.filter(({ rows }) => rows[1] > rows[0]);
+  const whole = drawn.find(({ frame, rows }) => rows[0] === 0 && rows[1] === frame.height);
+  if (whole) return whole.frame;
+  const first = drawn[0].frame;
+  const length = first.width * first.height * 4;
+  const pixels = spare && spare.byteLength === length ? new Uint8ClampedArray(spare) : new Uint8ClampedArray(length);
+  const sum = (read) => drawn.reduce((total, { frame }) => total + read(frame), 0);
+  for (const { frame, rows } of drawn) pixels.set(frame.pixels, rows[0] * first.width * 4);
+  const perPixel = sum((f) => f.cost.per_pixel);
+  return {
+    ...first,
+    pixels,
+    stats: {
+      ...first.stats,
+      fragments_shaded: sum((f) => f.stats.fragments_shaded),
+      covered_pixels: sum((f) => f.stats.covered_pixels),
+      lighting_evaluations: first.stats.lighting_evaluations - first.cost.per_pixel + perPixel,
+    },
+    cost: { ...first.cost, per_pixel: perPixel },
+  };
 }

@@ -10,8 +10,8 @@
 //   {type: 'render', id, scene, overlays, errors, spare?}
 //                                        -> {type: 'frame', id, width, height, rasterizer, stats, cost, view, pixels, ms,
 //                                            at: {received, posted}, errors?, exact?, bar?}
-//   {type: 'render-methods', id, scene, spares?}
-//                                        -> {type: 'frames', id, frames: [flat, gouraud, phong], ms, at}
+//   {type: 'render-methods', id, scene, spares?, part?}
+//                                        -> {type: 'frames', id, frames: [flat, gouraud, phong], rows, ms, at}
 //   {type: 'heat', id, scale, overlays}  -> {type: 'heat', id, scale, pixels}
 //   {type: 'inspect', id, scene, x, y, lang}  -> {type: 'inspection', id, inspection}
 //   {type: 'profile', id, scene, row | line}  -> {type: 'profile', id, profile}
@@ -98,11 +98,12 @@ const handlers = {
 
   // The three panels' frames in one call, when their texts differ only in
   // the method (no overlays, no error map): the geometry is transformed,
-  // set up and binned once. `ms` is the three together.
+  // set up and binned once. `ms` is the three together. With `part` =
+  // [k, n], part k of n of their rows (`rows`, see Shadelab.renderMethods).
   'render-methods'(msg) {
     const received = now();
-    const { frames, ms } = engine.renderMethods(msg.scene, msg.spares ?? []);
-    const reply = { type: 'frames', frames, ms, at: { received, posted: now() } };
+    const { frames, rows, ms } = engine.renderMethods(msg.scene, msg.spares ?? [], msg.part ?? null);
+    const reply = { type: 'frames', frames, rows, ms, at: { received, posted: now() } };
     return [reply, frames.map((f) => f.pixels.buffer)];
   },
 

@@ -47,6 +47,27 @@ pub fn coverage(scene: &Scene, options: &RenderOptions) -> Result<Vec<u32>, Rend
     Renderer::new().coverage(scene, options)
 }
 
+/// The row alignment of [`Renderer::render_methods_rows`]' parts: the
+/// tiled rasterizer's bands.
+pub const ROW_ALIGN: u32 = crate::raster::tiled::BAND_ROWS;
+
+/// Rows of part `part` of `parts` of an image `height` rows high, for
+/// [`Renderer::render_methods_rows`]: the parts are consecutive, cover the
+/// image, start at multiples of [`ROW_ALIGN`] and differ by at most
+/// [`ROW_ALIGN`] rows; a part is empty when there are more parts than
+/// runs of [`ROW_ALIGN`] rows (or `part >= parts`).
+pub fn part_rows(height: u32, part: u32, parts: u32) -> std::ops::Range<u32> {
+    if part >= parts {
+        return height..height;
+    }
+    let runs = u64::from(height.div_ceil(ROW_ALIGN));
+    let edge = |k: u32| {
+        let run = (runs * u64::from(k) / u64::from(parts)) as u32;
+        (run * ROW_ALIGN).min(height)
+    };
+    edge(part)..edge(part + 1)
+}
+
 /// Renders frames, keeping its working buffers from one frame to the next
 /// (the tiled rasterizer allocates nothing per frame once warmed up).
 ///
@@ -126,8 +147,53 @@ impl Renderer {
         &mut self,
         scene: &Scene,
         options: &RenderOptions,
-        mut images: [&mut Image; 3],
+        images: [&mut Image; 3],
     ) -> Result<[RenderStats; 3], RenderError> {
+        let rows = 0..options.height;
+        let (stats, _) = self.render_methods_rows(scene, options, rows, images)?;
+        Ok(stats)
+    }
+
+    /// [`Renderer::render_methods`] for the image rows `rows` only (see
+    /// [`part_rows`]): each image becomes those rows of the frame, `width ×
+    /// rows.len()` pixels, so that two threads of their own (the viewer's
+    /// two workers) can each draw a part of one frame. Triangles outside
+    /// the rows are counted but not set up; the bytes are those of the
+    /// whole frame's rows.
+    ///
+    /// Each part's statistics count the whole frame's polygons (and flat's
+    /// and Gouraud's lighting evaluations, per polygon and per vertex) and
+    /// its own rows' pixels: `fragments_shaded`, `covered_pixels` and
+    /// Phong's `lighting_evaluations` of the parts add up to the frame's.
+    ///
+    /// The modes only the scanline rasterizer draws are drawn whole: the
+    /// rows drawn are returned (then `0..height`, with the frame's counts).
+    ///
+    /// # Errors
+    /// As [`Renderer::render_methods`], and [`RenderError::Rows`] when
+    /// `rows` is empty, leaves the image, or does not start (and end, but
+    /// at the image's last row) at a multiple of [`ROW_ALIGN`].
+    pub fn render_methods_rows(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        rows: std::ops::Range<u32>,
+        mut images: [&mut Image; 3],
+    ) -> Result<([RenderStats; 3], std::ops::Range<u32>), RenderError> {
+        let height = options.height;
+        let aligned = |y: u32| y % ROW_ALIGN == 0;
+        if rows.is_empty()
+            || rows.end > height
+            || !aligned(rows.start)
+            || !(aligned(rows.end) || rows.end == height)
+        {
+            return Err(RenderError::Rows {
+                start: rows.start,
+                end: rows.end,
+                height,
+                align: ROW_ALIGN,
+            });
+        }
         let each = Shading::ALL.map(|shading| RenderOptions {
             shading,
             ..*options
@@ -137,21 +203,23 @@ impl Renderer {
             for ((options, image), stats) in each.iter().zip(images).zip(&mut stats) {
                 *stats = self.render_into(scene, options, image)?;
             }
-            return Ok(stats);
+            return Ok((stats, 0..height));
         }
         for options in &each {
             options.check()?;
         }
         validate(scene, options)?;
+        let part_height = rows.end - rows.start;
         for image in images.iter_mut() {
-            if image.width() != options.width || image.height() != options.height {
-                **image = Image::filled(options.width, options.height, options.background);
+            if image.width() != options.width || image.height() != part_height {
+                **image = Image::filled(options.width, part_height, options.background);
             }
         }
         set_lighting(&mut self.lighting, scene, options);
-        Ok(self
+        let stats = self
             .tiled
-            .render_methods(scene, options, &self.lighting, images))
+            .render_methods(scene, options, &self.lighting, &rows, images);
+        Ok((stats, rows))
     }
 
     /// How many polygons cover each pixel, row by row, with no depth test.

@@ -262,6 +262,22 @@ pub enum RenderError {
         /// First entry asked for.
         offset: u32,
     },
+    /// Rows asked of a part of a frame that are not a run of whole bands
+    /// within the image (`Renderer::render_methods_rows`).
+    #[error(
+        "rows {start}..{end} of an image {height} rows high: a part must be non-empty, within \
+         the image, and start (and end, but at the last row) at a multiple of {align} rows"
+    )]
+    Rows {
+        /// First row asked for.
+        start: u32,
+        /// One past the last row asked for.
+        end: u32,
+        /// The image's height.
+        height: u32,
+        /// The rows a part starts at a multiple of.
+        align: u32,
+    },
 }
 
 impl RenderError {
@@ -285,7 +301,8 @@ impl RenderError {
             RenderError::Palette { .. } => Some("render.palette_shades"),
             RenderError::Camera(_)
             | RenderError::NormalsMismatch { .. }
-            | RenderError::NonFinite(_) => None,
+            | RenderError::NonFinite(_)
+            | RenderError::Rows { .. } => None,
         }
     }
 

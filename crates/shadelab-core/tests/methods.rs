@@ -11,9 +11,9 @@ mod common;
 use common::*;
 use glam::{DVec3, Vec3};
 use shadelab_core::{
-    builtin_model, vertex_normals, Image, Interpolation, Light, LightKind, NormalWeighting,
-    Palette, Polygons, Rasterizer, RenderOptions, RenderStats, Renderer, Scene, Shading, SimdLevel,
-    Specular, BUILTIN_MODELS,
+    builtin_model, part_rows, vertex_normals, Image, Interpolation, Light, LightKind,
+    NormalWeighting, Palette, Polygons, Rasterizer, RenderOptions, RenderStats, Renderer, Scene,
+    Shading, SimdLevel, Specular, BUILTIN_MODELS, ROW_ALIGN,
 };
 
 /// The three methods' images and statistics, one frame each.
@@ -60,7 +60,169 @@ fn check(name: &str, kept: &mut Renderer, scene: &Scene, options: &RenderOptions
                 );
             }
         }
+        check_parts(name, renderer, scene, options, &want, &want_stats);
     }
+}
+
+/// Checks `render_methods_rows` of the frame in 2 and 3 parts (`part_rows`)
+/// against the whole frame's `want`: each part holds the bytes of its rows,
+/// counts the frame's polygons, and the parts' pixel counts add up.
+fn check_parts(
+    name: &str,
+    renderer: &mut Renderer,
+    scene: &Scene,
+    options: &RenderOptions,
+    want: &[Image; 3],
+    want_stats: &[RenderStats; 3],
+) {
+    let width = options.width as usize;
+    for parts in [2, 3] {
+        let mut sums = [(0, 0, 0); 3];
+        let mut covered = 0..0;
+        for part in 0..parts {
+            let rows = part_rows(options.height, part, parts);
+            if rows.is_empty() {
+                continue;
+            }
+            assert_eq!(rows.start, covered.end, "{name}: parts follow each other");
+            covered.end = rows.end;
+            let mut got: [Image; 3] =
+                std::array::from_fn(|_| Image::filled(1, 1, options.background));
+            let [a, b, c] = &mut got;
+            let (stats, drawn) = renderer
+                .render_methods_rows(scene, options, rows.clone(), [a, b, c])
+                .unwrap();
+            if drawn != rows {
+                // A mode only the scanline rasterizer draws: whole frames.
+                assert_eq!(drawn, 0..options.height, "{name}: drawn whole");
+                for k in 0..3 {
+                    assert!(got[k] == want[k], "{name}: a whole frame");
+                    assert_eq!(stats[k], want_stats[k], "{name}: a whole frame's counts");
+                }
+                return;
+            }
+            for k in 0..3 {
+                let method = Shading::ALL[k].name();
+                let expected =
+                    &want[k].pixels()[rows.start as usize * width..rows.end as usize * width];
+                assert_eq!(got[k].height(), rows.end - rows.start);
+                assert!(
+                    got[k].pixels() == expected,
+                    "{name}: {method}, rows {rows:?} of {parts} parts differ from the frame's"
+                );
+                let per_polygon = |s: &RenderStats| {
+                    (
+                        s.polygons,
+                        s.degenerate,
+                        s.invisible,
+                        s.culled,
+                        s.rasterized,
+                    )
+                };
+                assert_eq!(
+                    per_polygon(&stats[k]),
+                    per_polygon(&want_stats[k]),
+                    "{name}: {method} polygons"
+                );
+                if k < 2 {
+                    assert_eq!(
+                        stats[k].lighting_evaluations, want_stats[k].lighting_evaluations,
+                        "{name}: {method}"
+                    );
+                }
+                sums[k].0 += stats[k].fragments_shaded;
+                sums[k].1 += stats[k].covered_pixels;
+                sums[k].2 += stats[k].lighting_evaluations;
+            }
+        }
+        assert_eq!(
+            covered,
+            0..options.height,
+            "{name}: the parts cover the image"
+        );
+        for k in 0..3 {
+            let w = &want_stats[k];
+            assert_eq!(
+                sums[k].0, w.fragments_shaded,
+                "{name}: fragments of {parts} parts"
+            );
+            assert_eq!(
+                sums[k].1, w.covered_pixels,
+                "{name}: pixels of {parts} parts"
+            );
+            if k == 2 {
+                assert_eq!(
+                    sums[k].2, w.lighting_evaluations,
+                    "{name}: Phong's evaluations"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn parts_are_runs_of_whole_bands_and_others_are_refused() {
+    for height in [1, 15, 16, 17, 100, 480, 1080, 4096] {
+        for parts in 1..6 {
+            let rows: Vec<_> = (0..parts).map(|k| part_rows(height, k, parts)).collect();
+            assert_eq!(rows[0].start, 0);
+            assert_eq!(rows[parts as usize - 1].end, height);
+            for pair in rows.windows(2) {
+                assert_eq!(pair[0].end, pair[1].start);
+            }
+            for r in &rows {
+                assert!(
+                    r.start % ROW_ALIGN == 0 || r.is_empty(),
+                    "{height} {parts} {r:?}"
+                );
+                let len = r.end - r.start;
+                assert!(
+                    len <= height.div_ceil(ROW_ALIGN).div_ceil(parts) * ROW_ALIGN,
+                    "{height} {parts} {r:?}"
+                );
+            }
+        }
+        assert!(part_rows(height, 2, 2).is_empty());
+    }
+    let mesh = builtin_model("teapot", None).unwrap().normalized();
+    let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
+    let camera = camera(DVec3::new(0.4, 0.6, 3.2), DVec3::ZERO, 40.0, 0.5, 20.0);
+    let (scene, options) = (
+        scene(mesh, normals, camera),
+        options(64, 40, Shading::Phong),
+    );
+    let mut renderer = Renderer::new();
+    let backwards = std::ops::Range { start: 32, end: 16 };
+    for rows in [0..0, 8..40, 0..20, 16..41, backwards] {
+        let mut images: [Image; 3] =
+            std::array::from_fn(|_| Image::filled(2, 2, options.background));
+        let before = images.clone();
+        let [a, b, c] = &mut images;
+        let error = renderer
+            .render_methods_rows(&scene, &options, rows.clone(), [a, b, c])
+            .unwrap_err();
+        assert!(
+            matches!(error, shadelab_core::RenderError::Rows { .. }),
+            "{rows:?}: {error}"
+        );
+        assert!(error.to_string().contains("multiple of 16 rows"), "{error}");
+        assert!(
+            images == before,
+            "{rows:?}: a refused part leaves the images alone"
+        );
+    }
+    // Modes only the scanline rasterizer draws: the whole frame, said so.
+    let scanline = RenderOptions {
+        rasterizer: Rasterizer::Scanline,
+        ..options
+    };
+    let mut images: [Image; 3] = std::array::from_fn(|_| Image::filled(2, 2, options.background));
+    let [a, b, c] = &mut images;
+    let (_, drawn) = renderer
+        .render_methods_rows(&scene, &scanline, 16..40, [a, b, c])
+        .unwrap();
+    assert_eq!(drawn, 0..40);
+    assert_eq!(images[2].height(), 40);
 }
 
 fn lights_variants() -> Vec<(&'static str, Vec<Light>)> {

@@ -370,25 +370,52 @@ proptest! {
         ),
         cull in any::<bool>(),
     ) {
-        let cam = camera(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 50.0, 0.25, 30.0);
-        let view = View::new(&cam, W, H);
-        let mut points = Vec::new();
-        let mut normals = Vec::new();
-        for (k, (corners, normal)) in layers.iter().enumerate() {
-            // Each layer parallel to the image at its own depth.
-            let depth = 2.0 + 0.37 * k as f64 + if k % 2 == 0 { 0.0 } else { 5.0 };
-            for &(x, y) in corners {
-                points.push(unproject(&view, x, y, depth));
-                normals.push(*normal);
-            }
-        }
-        let (mesh, normals) = triangle_mesh(&points, &normals);
-        let scene = scene(mesh, normals, cam);
-        let options = RenderOptions { cull_backfaces: cull, ..options(W, H, Shading::Phong) };
-        if let Err(e) = check_equivalent("layers", &scene, &options) {
-            return Err(TestCaseError::fail(format!("{e}\n  layers {layers:?}")));
+        check_layers(W, H, &layers, cull)?;
+    }
+
+    /// The same with layers of up to a few hundred pixels, whose rows are
+    /// walked as spans: whole blocks lit without the queue, and others
+    /// queued, over pixels that earlier layers left queued.
+    #[test]
+    fn overlapping_large_layers(
+        layers in prop::collection::vec(
+            (prop::collection::vec((large_coordinate(300.0), large_coordinate(230.0)), 3), random_normal()),
+            2..12,
+        ),
+        cull in any::<bool>(),
+    ) {
+        check_layers(257, 193, &layers, cull)?;
+    }
+}
+
+/// Each layer, a triangle with window corners `(x, y)` and one normal,
+/// parallel to the image at a depth of its own (near and far layers
+/// alternating), drawn with Phong by both rasterizers.
+fn check_layers(
+    w: u32,
+    h: u32,
+    layers: &[(Vec<(f64, f64)>, Vec3)],
+    cull: bool,
+) -> Result<(), TestCaseError> {
+    let cam = camera(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 50.0, 0.25, 30.0);
+    let view = View::new(&cam, w, h);
+    let mut points = Vec::new();
+    let mut normals = Vec::new();
+    for (k, (corners, normal)) in layers.iter().enumerate() {
+        let depth = 2.0 + 0.37 * k as f64 + if k % 2 == 0 { 0.0 } else { 5.0 };
+        for &(x, y) in corners {
+            points.push(unproject(&view, x, y, depth));
+            normals.push(*normal);
         }
     }
+    let (mesh, normals) = triangle_mesh(&points, &normals);
+    let scene = scene(mesh, normals, cam);
+    let options = RenderOptions {
+        cull_backfaces: cull,
+        ..options(w, h, Shading::Phong)
+    };
+    check_equivalent("layers", &scene, &options)
+        .map_err(|e| TestCaseError::fail(format!("{e}\n  layers {layers:?}")))
 }
 
 #[test]

@@ -191,6 +191,29 @@ pub extern "C" fn shadelab_render_methods() -> u32 {
     })
 }
 
+/// Part `part` of `parts` of [`shadelab_render_methods`]
+/// ([`Engine::render_methods_part`]): the answer is `{"frames": [flat,
+/// gouraud, phong], "rows": [first, end]}`, and images 0, 1 and 2 at
+/// [`shadelab_image`] hold those rows of the three frames.
+#[no_mangle]
+pub extern "C" fn shadelab_render_methods_part(part: u32, parts: u32) -> u32 {
+    #[derive(Serialize)]
+    struct Part {
+        frames: [crate::engine::FrameInfo; 3],
+        rows: [u32; 2],
+    }
+    with(|i| {
+        let answer = match std::str::from_utf8(&i.input) {
+            Ok(text) => i
+                .engine
+                .render_methods_part(text, part, parts)
+                .map(|(frames, rows)| Part { frames, rows }),
+            Err(_) => Err(EngineError("the scene text is not UTF-8".into())),
+        };
+        i.answer(answer)
+    })
+}
+
 /// Answers a request whose input buffer holds its JSON.
 fn json_request<Q: DeserializeOwned, A: Serialize>(
     f: impl FnOnce(&mut Engine, &Q) -> Result<A, EngineError>,

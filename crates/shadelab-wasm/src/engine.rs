@@ -378,6 +378,72 @@ impl Engine {
         Ok(infos)
     }
 
+    /// Part `part` of `parts` of [`Engine::render_methods`]: the three
+    /// methods' frames of the scene `toml`, but only their rows `rows`
+    /// ([`shadelab_core::part_rows`], returned), so that two engines (the
+    /// page's two workers) draw one frame's three images together; the
+    /// page puts the parts' rows one under the other. [`Engine::images`]
+    /// then holds the three parts' RGBA pixels (`width × rows` each). A
+    /// mode only the scanline rasterizer draws is drawn whole by every
+    /// part (rows `0..height`).
+    ///
+    /// Each frame's counts are the whole frame's, but for those of its rows'
+    /// pixels: `stats.fragments_shaded`, `stats.covered_pixels` and
+    /// `cost.per_pixel` (which `stats.lighting_evaluations` includes), which
+    /// the parts add up to. A part is not a frame the instruments can read:
+    /// the engine keeps no last frame after it.
+    ///
+    /// # Errors
+    /// As [`Engine::render`], and when `part` is not below `parts`.
+    pub fn render_methods_part(
+        &mut self,
+        toml: &str,
+        part: u32,
+        parts: u32,
+    ) -> Result<([FrameInfo; 3], [u32; 2]), EngineError> {
+        if part >= parts {
+            return Err(EngineError(format!(
+                "part {part} of {parts}: parts are numbered from 0"
+            )));
+        }
+        let Loaded { options, .. } = self.load_scene(toml)?;
+        let scene = &self.prepared.as_ref().expect("load_scene keeps it").scene;
+        let rows = shadelab_core::part_rows(options.height, part, parts);
+        self.images.resize_with(3, Vec::new);
+        self.images.truncate(3);
+        let each = |k: usize| RenderOptions {
+            shading: Shading::ALL[k],
+            ..options
+        };
+        if rows.is_empty() {
+            // More parts than runs of rows: nothing to draw, nothing to add.
+            for image in &mut self.images {
+                image.clear();
+            }
+            let infos =
+                std::array::from_fn(|k| frame_info(scene, &each(k), RenderStats::default()));
+            return Ok((infos, [rows.start, rows.end]));
+        }
+        self.methods
+            .resize_with(3, || Image::filled(1, 1, Rgb8::default()));
+        let [a, b, c] = &mut self.methods[..] else {
+            unreachable!("three images")
+        };
+        let (stats, drawn) = self
+            .renderer
+            .render_methods_rows(scene, &options, rows, [a, b, c])
+            .map_err(|e| EngineError(e.to_string()))?;
+        for (image, out) in self.methods.iter().zip(&mut self.images) {
+            rgba_of(image, out);
+        }
+        let infos = std::array::from_fn(|k| frame_info(scene, &each(k), stats[k]));
+        self.counts.frames += 3;
+        self.image = None;
+        self.options = None;
+        self.errors = None;
+        Ok((infos, [drawn.start, drawn.end]))
+    }
+
     /// Records `frames` frames of the scene `toml` drawn (the last with
     /// `options`): the instruments that follow read this frame.
     fn drawn(&mut self, toml: &str, options: RenderOptions, frames: u64) {

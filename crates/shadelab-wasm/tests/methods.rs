@@ -121,3 +121,98 @@ fn the_export_answers_three_frames_and_three_images() {
     abi::set_input(b"\xff");
     assert_eq!(abi::shadelab_render_methods(), abi::FAILED);
 }
+
+/// Two or three engines each drawing a part of the rows
+/// (`Engine::render_methods_part`): the parts' rows, one under the other,
+/// are the whole frames' pixels; each part's frame report is the whole
+/// frame's but for its rows' pixel counts, which add up to the frame's; a
+/// mode only the scanline rasterizer draws is drawn whole by each part.
+#[test]
+fn parts_of_the_rows_drawn_by_engines_of_their_own_make_the_frames() {
+    let mut whole = Engine::new();
+    for model in ["source = \"teapot\"", "source = \"sphere\""] {
+        for extra in [
+            "",
+            "yaw = 33\npitch = -12\nzoom = 1.7\ncull_backfaces = false\n",
+            "rasterizer = \"scanline\"\n",
+        ] {
+            let toml = scene(model, "phong", extra);
+            let want = whole.render_methods(&toml).unwrap();
+            let want_images = whole.images().to_vec();
+            for parts in [2, 3] {
+                let mut engines: Vec<Engine> = (0..parts).map(|_| Engine::new()).collect();
+                let answers: Vec<_> = (0..parts)
+                    .map(|k| {
+                        let answer = engines[k as usize]
+                            .render_methods_part(&toml, k, parts)
+                            .unwrap();
+                        (answer, engines[k as usize].images().to_vec())
+                    })
+                    .collect();
+                for m in 0..3 {
+                    let ((first, rows), _) = &answers[0];
+                    if *rows == [0, 80] {
+                        // Drawn whole (scanline): every part is the frame.
+                        for ((frames, rows), images) in &answers {
+                            assert_eq!(*rows, [0, 80], "{toml}");
+                            assert_eq!(frames[m], want[m], "{toml}");
+                            assert_eq!(images[m], want_images[m], "{toml}");
+                        }
+                        continue;
+                    }
+                    let mut pixels = Vec::new();
+                    let (mut fragments, mut covered, mut per_pixel) = (0, 0, 0);
+                    for ((frames, rows), images) in &answers {
+                        assert_eq!(images[m].len(), 96 * 4 * (rows[1] - rows[0]) as usize);
+                        assert_eq!(rows[0] as usize, pixels.len() / (96 * 4), "{toml}");
+                        pixels.extend_from_slice(&images[m]);
+                        let f = &frames[m];
+                        assert_eq!((f.width, f.height, f.view), (96, 80, want[m].view));
+                        assert_eq!(f.stats.rasterized, want[m].stats.rasterized);
+                        assert_eq!(f.cost.per_polygon, want[m].cost.per_polygon);
+                        assert_eq!(f.cost.per_vertex, want[m].cost.per_vertex);
+                        fragments += f.stats.fragments_shaded;
+                        covered += f.stats.covered_pixels;
+                        per_pixel += f.cost.per_pixel;
+                    }
+                    assert_eq!(pixels, want_images[m], "{toml}, {parts} parts");
+                    let w = &want[m];
+                    assert_eq!(fragments, w.stats.fragments_shaded, "{toml}");
+                    assert_eq!(covered, w.stats.covered_pixels, "{toml}");
+                    assert_eq!(per_pixel, w.cost.per_pixel, "{toml}");
+                    let evaluations = first[m].stats.lighting_evaluations - first[m].cost.per_pixel;
+                    assert_eq!(evaluations + per_pixel, w.stats.lighting_evaluations);
+                }
+                for engine in &engines {
+                    assert_eq!(engine.counts().frames, 3);
+                    // A part is no frame for the instruments.
+                    assert!(engine.image().is_none());
+                }
+            }
+        }
+    }
+    // More parts than runs of rows: the extra parts draw nothing.
+    let tiny = "[render]\nwidth = 8\nheight = 12\n";
+    let mut engine = Engine::new();
+    let (_, rows) = engine.render_methods_part(tiny, 0, 2).unwrap();
+    assert_eq!(rows[0], rows[1]);
+    assert!(engine.images().iter().all(Vec::is_empty));
+    let (_, rows) = engine.render_methods_part(tiny, 1, 2).unwrap();
+    assert_eq!(rows, [0, 12]);
+    let error = engine.render_methods_part(tiny, 2, 2).unwrap_err();
+    assert!(error.to_string().contains("part 2 of 2"), "{error}");
+}
+
+#[test]
+fn the_part_export_answers_rows_and_their_images() {
+    let parse = |s: String| -> serde_json::Value { serde_json::from_str(&s).unwrap() };
+    abi::set_input(b"[render]\nwidth = 20\nheight = 40\nshading = \"phong\"\n");
+    assert_eq!(abi::shadelab_render_methods_part(1, 2), abi::OK);
+    let answer = parse(abi::result_text());
+    assert_eq!(answer["rows"], serde_json::json!([16, 40]));
+    for k in 0..3 {
+        assert_eq!(abi::shadelab_image_len(k), 20 * 24 * 4);
+    }
+    assert_eq!(answer["frames"][2]["height"], 40);
+    assert_eq!(abi::shadelab_render_methods_part(2, 2), abi::FAILED);
+}

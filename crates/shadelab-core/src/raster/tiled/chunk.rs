@@ -4,7 +4,7 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
-use super::setup::{plane_count, Plane, Triangle, ALL_ATTRS};
+use super::setup::{plane_count, Plane, Triangle, ALL_ATTRS, BAND_ROWS};
 
 use crate::clip::{clip_polygon, ClipVertex};
 use crate::raster::to_window;
@@ -91,6 +91,10 @@ pub(super) struct Frame<'a> {
     pub(super) lit_back: &'a [[f32; 3]],
     pub(super) guard: f32,
     pub(super) bands: usize,
+    /// The image rows drawn (whole bands): triangles outside them are
+    /// counted, and flat lights their polygons, but they get no planes and
+    /// no bins.
+    pub(super) rows: std::ops::Range<i32>,
 }
 
 impl Frame<'_> {
@@ -154,8 +158,13 @@ impl Frame<'_> {
     /// attribute sources. Meshes list their faces in an order far from
     /// their vertices' (the bunny's faces jump by a median of 1,557 vertex
     /// indices), so without this nearly every polygon waits for memory.
+    /// Where [`prefetch`] is no instruction (WebAssembly), this does
+    /// nothing: the addresses' index loads and bounds checks would stay.
     #[inline(always)]
     pub(super) fn prefetch<const A: usize>(&self, face: usize) {
+        if !cfg!(target_arch = "x86_64") {
+            return;
+        }
         let mesh = &self.scene.mesh;
         let range = mesh.corner_range(face);
         if range.len() == 3 {
@@ -186,6 +195,12 @@ impl Frame<'_> {
             prefetch(&normals.normals[normals.corner[corner] as usize]);
             prefetch(&mesh.positions()[vertex]);
         }
+    }
+
+    /// Whether triangle `t` has rows among those drawn.
+    #[inline(always)]
+    pub(super) fn draws(&self, t: &Triangle) -> bool {
+        t.y1 > self.rows.start && t.y0 < self.rows.end
     }
 
     pub(super) fn attr_count(&self) -> usize {
@@ -323,15 +338,6 @@ impl Chunk {
         if t.covers_no_centre() {
             return Some(());
         }
-        let vertex = |k: usize| ScreenVertex {
-            x: x[k],
-            y: y[k],
-            depth: p[k].depth,
-            inv_w: p[k].inv_w,
-            attrs: frame.front_attrs::<A>(first_corner + k),
-        };
-        let v: [ScreenVertex<A>; 3] = [vertex(0), vertex(1), vertex(2)];
-        let planes = t.planes(&v, A, options.interpolation);
         if A == 0 || A == ALL_ATTRS {
             // As `flat_surface`, with the triangle's corners at hand.
             let positions = frame.scene.mesh.positions();
@@ -345,7 +351,19 @@ impl Chunk {
                 .push([normal.x, normal.y, normal.z, c.x, c.y, c.z]);
             t.color = (self.flat_surfaces.len() - 1) as u32;
         }
-        self.bin(&t, &planes[..plane_count(A)]);
+        if !frame.draws(&t) {
+            return Some(());
+        }
+        let vertex = |k: usize| ScreenVertex {
+            x: x[k],
+            y: y[k],
+            depth: p[k].depth,
+            inv_w: p[k].inv_w,
+            attrs: frame.front_attrs::<A>(first_corner + k),
+        };
+        let v: [ScreenVertex<A>; 3] = [vertex(0), vertex(1), vertex(2)];
+        let planes = t.planes(&v, A, options.interpolation);
+        self.bin(&t, &planes[..plane_count(A)], frame);
         Some(())
     }
 
@@ -370,10 +388,13 @@ impl Chunk {
         (self.flat_surfaces.len() - 1) as u32
     }
 
-    /// Adds a set-up triangle to the bins of the bands it touches.
+    /// Adds a set-up triangle to the bins of the drawn bands it touches.
     #[inline(always)]
-    pub(super) fn bin(&mut self, t: &Triangle, planes: &[Plane]) {
-        for band in t.bands() {
+    pub(super) fn bin(&mut self, t: &Triangle, planes: &[Plane], frame: &Frame<'_>) {
+        let bands = t.bands();
+        let drawn = frame.rows.start as usize / BAND_ROWS as usize
+            ..(frame.rows.end as usize).div_ceil(BAND_ROWS as usize);
+        for band in bands.start.max(drawn.start)..bands.end.min(drawn.end) {
             let bin = &mut self.bins[band];
             bin.triangles.push(*t);
             bin.planes.extend_from_slice(planes);
@@ -439,14 +460,14 @@ impl Chunk {
             let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
                 continue;
             };
-            if t.covers_no_centre() {
+            if t.covers_no_centre() || !frame.draws(&t) {
                 continue;
             }
             let planes = t.planes(&triangle, attrs, options.interpolation);
             t.color = color;
             t.flip = if back { -1.0 } else { 1.0 };
             t.once = once;
-            self.bin(&t, &planes[..plane_count(attrs)]);
+            self.bin(&t, &planes[..plane_count(attrs)], frame);
         }
         self.window = window;
     }

@@ -54,6 +54,12 @@
 //!   those of three frames (`tests/methods.rs`). On meshes of 70k–100k
 //!   small triangles the three cost about half of three frames
 //!   (WebAssembly, 480²), where setup is now the larger part.
+//! * **A part of the rows, for threads of their own.** The viewer's
+//!   WebAssembly has one thread per worker; two workers each draw half the
+//!   rows of the three frames. Every polygon is still projected, faced and
+//!   counted (the counts stay the frame's), but one outside the part's rows
+//!   gets no attributes, planes or bins, and only the part's bands are
+//!   walked: the bytes are those of the frame's rows.
 
 mod band;
 mod chunk;
@@ -67,7 +73,8 @@ use rayon::prelude::*;
 use self::band::{band_rows, Band, Colors, Pass};
 
 use self::chunk::{clip_position, Chunk, Frame, Projected, SetupKernel};
-use self::setup::{plane_count, BAND_ROWS, PLANES};
+pub(crate) use self::setup::BAND_ROWS;
+use self::setup::{plane_count, PLANES};
 use self::vertices::{light_vertices, FaceNormals, VertexTable};
 
 use crate::clip::{is_inside, ClipVertex};
@@ -179,7 +186,8 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         self.band.flush(simd, self.shader, &lanes);
         match self.output {
             Output::Image(pixels, background) => {
-                (self.band).finish(simd, pixels, o.width, background, Colors::Shader)
+                self.band
+                    .finish(simd, pixels, o.width, background, Colors::Shader)
             }
             Output::Methods([flat, gouraud, phong], background) => {
                 let band = &mut *self.band;
@@ -270,7 +278,8 @@ impl Rasterize for TiledRasterizer {
         lighting: &Lighting,
         image: &mut Image,
     ) -> RenderStats {
-        let mut stats = self.geometry(scene, options, lighting, Some(options.shading));
+        let all_rows = 0..options.height;
+        let mut stats = self.geometry(scene, options, lighting, Some(options.shading), &all_rows);
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
         let background = packed(options.background);
@@ -312,7 +321,8 @@ impl Rasterize for TiledRasterizer {
         options: &RenderOptions,
         lighting: &Lighting,
     ) -> Vec<u32> {
-        self.geometry(scene, options, lighting, Some(options.shading));
+        let all_rows = 0..options.height;
+        self.geometry(scene, options, lighting, Some(options.shading), &all_rows);
         let width = options.width as usize;
         let mut counts = vec![0u32; width * options.height as usize];
         let (chunks, simd) = (&self.chunks, self.simd);
@@ -337,30 +347,39 @@ impl TiledRasterizer {
     /// cost of one frame's geometry and one walk of its triangles: the
     /// vertex stage, setup and binning run once, for the attributes of all
     /// three, and each triangle is walked and depth-tested once.
+    ///
+    /// Only rows `rows` are drawn (whole bands: `rows.start` a multiple of
+    /// [`BAND_ROWS`], `rows.end` too or the image's height), into images
+    /// of those rows; triangles wholly outside them get no planes and no
+    /// bins. Every polygon's counts are the frame's; the pixels' counts
+    /// (fragments, covered pixels, Phong's evaluations) are the rows'.
     pub fn render_methods(
         &mut self,
         scene: &Scene,
         options: &RenderOptions,
         lighting: &Lighting,
+        rows: &std::ops::Range<u32>,
         images: [&mut Image; 3],
     ) -> [RenderStats; 3] {
-        let stats = self.geometry(scene, options, lighting, None);
+        let stats = self.geometry(scene, options, lighting, None, rows);
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
         let background = packed(options.background);
         let phong = &self.phong;
         let scratch = &self.bands;
-        let rows = width * BAND_ROWS as usize;
+        let band_len = width * BAND_ROWS as usize;
+        let first_band = (rows.start / BAND_ROWS) as usize;
         let [flat, gouraud, phong_image] = images;
         let bands = flat
             .pixels_mut()
-            .par_chunks_mut(rows)
-            .zip(gouraud.pixels_mut().par_chunks_mut(rows))
-            .zip(phong_image.pixels_mut().par_chunks_mut(rows))
+            .par_chunks_mut(band_len)
+            .zip(gouraud.pixels_mut().par_chunks_mut(band_len))
+            .zip(phong_image.pixels_mut().par_chunks_mut(band_len))
             .enumerate();
         // One walk of each triangle: the three methods share coverage and
         // depth, so the fragments and pixels drawn are the same for each.
-        let totals = bands.map(|(index, ((f, g), p))| {
+        let totals = bands.map(|(k, ((f, g), p))| {
+            let index = first_band + k;
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
             let output = Output::Methods([f, g, p], background);
@@ -398,7 +417,9 @@ impl TiledRasterizer {
     }
 
     /// Vertex stage, then setup and binning, for `method`'s attributes
-    /// (`None`: the three methods'); leaves the bins in `self.chunks`.
+    /// (`None`: the three methods') and the image rows `rows` (whole bands;
+    /// triangles outside them are counted, not set up); leaves the bins in
+    /// `self.chunks`.
     /// The statistics' lighting evaluations are the frame's (flat's and
     /// Gouraud's when all three), also kept in `self.evaluations`.
     fn geometry(
@@ -407,6 +428,7 @@ impl TiledRasterizer {
         options: &RenderOptions,
         lighting: &Lighting,
         method: Option<Shading>,
+        rows: &std::ops::Range<u32>,
     ) -> RenderStats {
         let (width, height) = (options.width, options.height);
         let aspect = width as f32 / height as f32;
@@ -482,6 +504,7 @@ impl TiledRasterizer {
             lit_back: &self.lit_back,
             guard,
             bands,
+            rows: rows.start as i32..rows.end as i32,
         };
         let polygons = mesh.polygon_count();
         self.chunks

@@ -32,7 +32,9 @@
 //! their colours written back in the order they were queued (a later
 //! fragment of the same pixel is written later, as without the queues; the
 //! position queue is emptied at the end of each triangle; eight queued
-//! pixels in a row are written with one store).
+//! pixels in a row are written with one store). A span's whole blocks skip
+//! the queue when it is empty: four (two) of them are depth-tested, and if
+//! every lane passed, lit together and written at once.
 //!
 //! Other shaders evaluate their planes once per row (only the depth plane
 //! for Phong, whose eight planes would mostly be evaluated for rows whose
@@ -106,6 +108,9 @@ const QUEUE_LIT: usize = 8 * LIT_GROUPS;
 const LIT_GROUPS: usize = 4;
 #[cfg(not(target_arch = "x86_64"))]
 const LIT_GROUPS: usize = 2;
+/// The columns of [`LIT_GROUPS`] blocks: a span's whole blocks are lit this
+/// many at a time without the queue ([`Band::whole_blocks`]).
+const GROUP: i32 = 8 * LIT_GROUPS as i32;
 
 /// Fragments of a deferred shader, packed into whole lanes: their
 /// attributes and buffer indices, in the order they passed the depth test.
@@ -484,6 +489,11 @@ impl Band {
                 continue;
             }
             while x < right {
+                if Sh::DEFERRED && PLAIN && self.queue.len == 0 && x >= left && x + GROUP <= right {
+                    fragments += self.whole_blocks(s, f, row_start + x as usize, x, &row);
+                    x += GROUP;
+                    continue;
+                }
                 let lanes = lane_index + Vi::splat(s, x);
                 let inside = lanes.gt(from) & to.gt(lanes);
                 fragments +=
@@ -527,6 +537,72 @@ impl Band {
         }
         let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
         let (x, pass) = depth_test(s, f, inside, x, row, depth_slot);
+        self.passed(s, f, x, pass, at, row)
+    }
+
+    /// Whole blocks of a span of a deferred shader, [`LIT_GROUPS`] of them
+    /// from column `x` (buffer index `at`), with nothing queued: each
+    /// depth-tested, and when every lane passes, interpolated, lit together
+    /// and written straight to the colour buffer, without the queue's
+    /// stores and loads; else each goes on as [`Band::block`] sends it. The
+    /// values are the queue's (each lane is lit on its own), and with
+    /// nothing queued no earlier fragment of these pixels is left to write.
+    #[inline(always)]
+    fn whole_blocks<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        at: usize,
+        x: i32,
+        row: &Row,
+    ) -> u32 {
+        debug_assert!(row.all && self.queue.len == 0);
+        let every = Vi::splat(s, -1);
+        let mut columns = [Vf::splat(s, 0.0); LIT_GROUPS];
+        let mut passes = [every; LIT_GROUPS];
+        let mut full = true;
+        for g in 0..LIT_GROUPS {
+            let (at, x) = (at + 8 * g, x + 8 * g as i32);
+            let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
+            let (columns_g, pass) = depth_test(s, f, every, x, row, depth_slot);
+            full &= pass.mask_bits() == 0xff;
+            (columns[g], passes[g]) = (columns_g, pass);
+        }
+        if !full {
+            let mut fragments = 0;
+            for g in 0..LIT_GROUPS {
+                fragments += self.passed(s, f, columns[g], passes[g], at + 8 * g, row);
+            }
+            return fragments;
+        }
+        let mut blocks = [[Vf::splat(s, 0.0); MAX_ATTRS]; LIT_GROUPS];
+        for g in 0..LIT_GROUPS {
+            if Sh::ALL_METHODS {
+                self.flat_and_gouraud(s, f, columns[g], row.dy, passes[g], at + 8 * g);
+            }
+            blocks[g] = interpolate(s, f, columns[g], |j| Vf::splat(s, row.values[j]));
+        }
+        let colors = f.shader.light_groups(f.shader_lanes, s, blocks.each_ref());
+        for (g, colors) in colors.into_iter().enumerate() {
+            let slot = &mut self.color[self.color_at + at + 8 * g..][..8];
+            s.i_store(colors.0, slot.try_into().unwrap());
+        }
+        8 * LIT_GROUPS as u32
+    }
+
+    /// What follows a block's depth test: the lanes `pass` (columns `x`
+    /// from the triangle's first, buffer index `at`) queued for a deferred
+    /// shader, whole or packed; returns how many passed.
+    #[inline(always)]
+    fn passed<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        x: Vf<S>,
+        pass: Vi<S>,
+        at: usize,
+        row: &Row,
+    ) -> u32 {
         let bits = pass.mask_bits();
         if bits == 0 {
             return 0;
@@ -562,22 +638,14 @@ impl Band {
         let none = [Vf::splat(s, 0.0); MAX_ATTRS];
         let flat = FlatShader.shade(&(), s, f.t.color, f.t.flip, &none);
         let plane = |j: usize| &f.planes[GOURAUD_OF_ALL[j]];
-        let at_row = |j: usize| Vf::splat(s, plane(j).at_origin + plane(j).dy * dy);
-        let dx = |j: usize| Vf::splat(s, plane(j).dx);
-        let mut colors = none;
-        match f.interpolation {
-            Interpolation::Perspective => {
-                let w = x.mul_add(dx(1), at_row(1)).recip();
-                for k in 0..3 {
-                    colors[k] = x.mul_add(dx(2 + k), at_row(2 + k)) * w;
-                }
-            }
-            Interpolation::Screen => {
-                for k in 0..3 {
-                    colors[k] = x.mul_add(dx(2 + k), at_row(2 + k));
-                }
-            }
-        }
+        let colors = interpolate_planes(
+            s,
+            f.interpolation,
+            3,
+            x,
+            |j| Vf::splat(s, plane(j).dx),
+            |j| Vf::splat(s, plane(j).at_origin + plane(j).dy * dy),
+        );
         let gouraud = GouraudShader.shade(&(), s, f.t.color, f.t.flip, &colors);
         for (k, colors) in [flat, gouraud].into_iter().enumerate() {
             let slot = &mut self.others[k][self.others_at[k] + at..][..8];
@@ -742,23 +810,40 @@ fn interpolate<S: Simd, Sh: Shader>(
     x: Vf<S>,
     at_row: impl Fn(usize) -> Vf<S>,
 ) -> [Vf<S>; MAX_ATTRS] {
-    let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
-    match f.interpolation {
-        Interpolation::Perspective if Sh::ATTRS > 0 => {
-            let w = x.mul_add(f.dx[1], at_row(1)).recip();
-            for k in 0..Sh::ATTRS {
-                attrs[k] = x.mul_add(f.dx[2 + k], at_row(2 + k)) * w;
-            }
-        }
-        _ => {
-            for k in 0..Sh::ATTRS {
-                attrs[k] = x.mul_add(f.dx[2 + k], at_row(2 + k));
-            }
-        }
-    }
+    let mut attrs = interpolate_planes(s, f.interpolation, Sh::ATTRS, x, |k| f.dx[k], at_row);
     if Sh::DEFERRED && f.t.flip != 1.0 {
         for k in 0..3 {
             attrs[k] = attrs[k] * f.t.flip;
+        }
+    }
+    attrs
+}
+
+/// Attributes `0..count` at columns `x`, from each plane's gradient
+/// `dx(j)` and its value at the first column of the row `at_row(j)`:
+/// plane 1 is 1/w, attribute `k` is plane `2 + k` (divided by w in
+/// perspective mode, so multiplied back by the interpolated w).
+#[inline(always)]
+fn interpolate_planes<S: Simd>(
+    s: S,
+    interpolation: Interpolation,
+    count: usize,
+    x: Vf<S>,
+    dx: impl Fn(usize) -> Vf<S>,
+    at_row: impl Fn(usize) -> Vf<S>,
+) -> [Vf<S>; MAX_ATTRS] {
+    let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
+    match interpolation {
+        Interpolation::Perspective if count > 0 => {
+            let w = x.mul_add(dx(1), at_row(1)).recip();
+            for k in 0..count {
+                attrs[k] = x.mul_add(dx(2 + k), at_row(2 + k)) * w;
+            }
+        }
+        _ => {
+            for k in 0..count {
+                attrs[k] = x.mul_add(dx(2 + k), at_row(2 + k));
+            }
         }
     }
     attrs
