@@ -374,8 +374,8 @@ proptest! {
     }
 
     /// The same with layers of up to a few hundred pixels, whose rows are
-    /// walked as spans: whole blocks lit without the queue, and others
-    /// queued, over pixels that earlier layers left queued.
+    /// walked as spans: whole blocks and packed ones queued over pixels
+    /// that earlier layers left queued.
     #[test]
     fn overlapping_large_layers(
         layers in prop::collection::vec(

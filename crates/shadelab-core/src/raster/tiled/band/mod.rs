@@ -32,9 +32,7 @@
 //! their colours written back in the order they were queued (a later
 //! fragment of the same pixel is written later, as without the queues; the
 //! position queue is emptied at the end of each triangle; eight queued
-//! pixels in a row are written with one store). A span's whole blocks skip
-//! the queue when it is empty: four (two) of them are depth-tested, and if
-//! every lane passed, lit together and written at once.
+//! pixels in a row are written with one store).
 //!
 //! Other shaders evaluate their planes once per row (only the depth plane
 //! for Phong, whose eight planes would mostly be evaluated for rows whose
@@ -108,9 +106,6 @@ const QUEUE_LIT: usize = 8 * LIT_GROUPS;
 const LIT_GROUPS: usize = 4;
 #[cfg(not(target_arch = "x86_64"))]
 const LIT_GROUPS: usize = 2;
-/// The columns of [`LIT_GROUPS`] blocks: a span's whole blocks are lit this
-/// many at a time without the queue ([`Band::whole_blocks`]).
-const GROUP: i32 = 8 * LIT_GROUPS as i32;
 
 /// Fragments of a deferred shader, packed into whole lanes: their
 /// attributes and buffer indices, in the order they passed the depth test.
@@ -489,11 +484,6 @@ impl Band {
                 continue;
             }
             while x < right {
-                if Sh::DEFERRED && PLAIN && self.queue.len == 0 && x >= left && x + GROUP <= right {
-                    fragments += self.whole_blocks(s, f, row_start + x as usize, x, &row);
-                    x += GROUP;
-                    continue;
-                }
                 let lanes = lane_index + Vi::splat(s, x);
                 let inside = lanes.gt(from) & to.gt(lanes);
                 fragments +=
@@ -538,56 +528,6 @@ impl Band {
         let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
         let (x, pass) = depth_test(s, f, inside, x, row, depth_slot);
         self.passed(s, f, x, pass, at, row)
-    }
-
-    /// Whole blocks of a span of a deferred shader, [`LIT_GROUPS`] of them
-    /// from column `x` (buffer index `at`), with nothing queued: each
-    /// depth-tested, and when every lane passes, interpolated, lit together
-    /// and written straight to the colour buffer, without the queue's
-    /// stores and loads; else each goes on as [`Band::block`] sends it. The
-    /// values are the queue's (each lane is lit on its own), and with
-    /// nothing queued no earlier fragment of these pixels is left to write.
-    #[inline(always)]
-    fn whole_blocks<S: Simd, Sh: Shader>(
-        &mut self,
-        s: S,
-        f: &Fill<'_, S, Sh>,
-        at: usize,
-        x: i32,
-        row: &Row,
-    ) -> u32 {
-        debug_assert!(row.all && self.queue.len == 0);
-        let every = Vi::splat(s, -1);
-        let mut columns = [Vf::splat(s, 0.0); LIT_GROUPS];
-        let mut passes = [every; LIT_GROUPS];
-        let mut full = true;
-        for g in 0..LIT_GROUPS {
-            let (at, x) = (at + 8 * g, x + 8 * g as i32);
-            let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
-            let (columns_g, pass) = depth_test(s, f, every, x, row, depth_slot);
-            full &= pass.mask_bits() == 0xff;
-            (columns[g], passes[g]) = (columns_g, pass);
-        }
-        if !full {
-            let mut fragments = 0;
-            for g in 0..LIT_GROUPS {
-                fragments += self.passed(s, f, columns[g], passes[g], at + 8 * g, row);
-            }
-            return fragments;
-        }
-        let mut blocks = [[Vf::splat(s, 0.0); MAX_ATTRS]; LIT_GROUPS];
-        for g in 0..LIT_GROUPS {
-            if Sh::ALL_METHODS {
-                self.flat_and_gouraud(s, f, columns[g], row.dy, passes[g], at + 8 * g);
-            }
-            blocks[g] = interpolate(s, f, columns[g], |j| Vf::splat(s, row.values[j]));
-        }
-        let colors = f.shader.light_groups(f.shader_lanes, s, blocks.each_ref());
-        for (g, colors) in colors.into_iter().enumerate() {
-            let slot = &mut self.color[self.color_at + at + 8 * g..][..8];
-            s.i_store(colors.0, slot.try_into().unwrap());
-        }
-        8 * LIT_GROUPS as u32
     }
 
     /// What follows a block's depth test: the lanes `pass` (columns `x`
