@@ -379,6 +379,23 @@ test('the three panels of one scene are drawn in one request, with the pixels of
   assert.deepEqual(await digests(page), shared);
   assert.deepEqual(await page.evaluate(() => window.shadelab.panels.map((p) => p.last.stats)), stats);
   assert.deepEqual(await costs(), cost);
+  // The scanline rasterizer draws whole frames: in halves, the first
+  // worker draws them alone, and the pictures are those drawn as on one core.
+  await update(page, "s.rasterizer = 'scanline'");
+  await page.evaluate(() => window.shadelab.drawTogether(true, 1));
+  await settle(page);
+  const scanline = await digests(page);
+  await page.evaluate(() => window.shadelab.drawTogether(true, 2));
+  await settle(page);
+  assert.deepEqual(
+    await drawnBy(() => update(page, 's.camera.yaw = 48; s.camera.pitch = 16')),
+    { flat: 3, gouraud: 0, phong: 0 },
+    'in halves, the scanline frames are drawn by the first worker alone',
+  );
+  await update(page, 's.camera.pitch = 15');
+  assert.deepEqual(await digests(page), scanline);
+  await update(page, "s.rasterizer = 'tiled'");
+  assert.deepEqual(await digests(page), shared);
   // The Cost tab compares the methods' times: the panels are drawn apart, and
   // the pictures and counts are the same.
   await page.evaluate(() => window.shadelab.setTab('cost'));

@@ -68,6 +68,21 @@ pub fn part_rows(height: u32, part: u32, parts: u32) -> std::ops::Range<u32> {
     edge(part)..edge(part + 1)
 }
 
+/// Whether [`Renderer::render_methods_rows`] draws only the rows it is
+/// given for `options`: false for the modes only the scanline rasterizer
+/// draws, which it draws whole whatever the rows (so one part of a frame
+/// is enough for them).
+pub fn draws_in_parts(options: &RenderOptions) -> bool {
+    options.rasterizer != Rasterizer::Scanline
+        && Shading::ALL.iter().all(|&shading| {
+            !RenderOptions {
+                shading,
+                ..*options
+            }
+            .needs_scanline()
+        })
+}
+
 /// Renders frames, keeping its working buffers from one frame to the next
 /// (the tiled rasterizer allocates nothing per frame once warmed up).
 ///
@@ -194,17 +209,21 @@ impl Renderer {
                 align: ROW_ALIGN,
             });
         }
-        let each = Shading::ALL.map(|shading| RenderOptions {
-            shading,
-            ..*options
-        });
-        if options.rasterizer == Rasterizer::Scanline || each.iter().any(|o| o.needs_scanline()) {
+        if !draws_in_parts(options) {
+            let each = Shading::ALL.map(|shading| RenderOptions {
+                shading,
+                ..*options
+            });
             let mut stats = [RenderStats::default(); 3];
             for ((options, image), stats) in each.iter().zip(images).zip(&mut stats) {
                 *stats = self.render_into(scene, options, image)?;
             }
             return Ok((stats, 0..height));
         }
+        let each = Shading::ALL.map(|shading| RenderOptions {
+            shading,
+            ..*options
+        });
         for options in &each {
             options.check()?;
         }

@@ -33,7 +33,7 @@ pub use camera::{Camera, CameraError};
 pub use choice::{Choice, UnknownChoice};
 pub use clip::{clip_polygon, ClipVertex};
 pub use color::{Rgb, Rgb8};
-pub use frame::{coverage, part_rows, render, Renderer, ROW_ALIGN};
+pub use frame::{coverage, draws_in_parts, part_rows, render, Renderer, ROW_ALIGN};
 pub use image::Image;
 pub use light::{Light, LightKind, LightKindName, Material, Specular, NO_ATTENUATION};
 pub use limits::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};

@@ -11,9 +11,9 @@ mod common;
 use common::*;
 use glam::{DVec3, Vec3};
 use shadelab_core::{
-    builtin_model, part_rows, vertex_normals, Image, Interpolation, Light, LightKind,
-    NormalWeighting, Palette, Polygons, Rasterizer, RenderOptions, RenderStats, Renderer, Scene,
-    Shading, SimdLevel, Specular, BUILTIN_MODELS, ROW_ALIGN,
+    builtin_model, draws_in_parts, part_rows, vertex_normals, Image, Interpolation, Light,
+    LightKind, NormalWeighting, Palette, Polygons, Rasterizer, RenderOptions, RenderStats,
+    Renderer, Scene, Shading, SimdLevel, Specular, BUILTIN_MODELS, ROW_ALIGN,
 };
 
 /// The three methods' images and statistics, one frame each.
@@ -92,6 +92,14 @@ fn check_parts(
             let (stats, drawn) = renderer
                 .render_methods_rows(scene, options, rows.clone(), [a, b, c])
                 .unwrap();
+            // What is drawn whole, `draws_in_parts` tells beforehand.
+            let whole = 0..options.height;
+            let told = if draws_in_parts(options) {
+                &rows
+            } else {
+                &whole
+            };
+            assert_eq!(&drawn, told, "{name}: the rows drawn");
             if drawn != rows {
                 // A mode only the scanline rasterizer draws: whole frames.
                 assert_eq!(drawn, 0..options.height, "{name}: drawn whole");

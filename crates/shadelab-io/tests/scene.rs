@@ -141,9 +141,12 @@ fn full_example_parses_as_written() {
     assert_eq!(file.model.normals, Some(NormalsChoice::Auto));
     let camera = file.camera.as_ref().expect("camera");
     assert_eq!(camera.eye, [0.0, 0.5, 3.0]);
-    assert_eq!(camera.target, [0.0, 0.0, 0.0]);
-    assert_eq!(camera.up, [0.0, 1.0, 0.0]);
-    assert_eq!((camera.fov_y, camera.near, camera.far), (45.0, 0.1, 100.0));
+    assert_eq!(camera.target, Some([0.0, 0.0, 0.0]));
+    assert_eq!(camera.up, Some([0.0, 1.0, 0.0]));
+    assert_eq!(
+        (camera.fov_y, camera.near, camera.far),
+        (Some(45.0), Some(0.1), Some(100.0))
+    );
     assert_eq!(file.ambient.color, Some([255, 255, 255]));
     assert_eq!(file.ambient.intensity, Some(0.2));
     let lights = file.lights.as_ref().expect("lights");

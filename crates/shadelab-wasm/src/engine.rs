@@ -384,8 +384,8 @@ impl Engine {
     /// page's two workers) draw one frame's three images together; the
     /// page puts the parts' rows one under the other. [`Engine::images`]
     /// then holds the three parts' RGBA pixels (`width × rows` each). A
-    /// mode only the scanline rasterizer draws is drawn whole by every
-    /// part (rows `0..height`).
+    /// mode only the scanline rasterizer draws is drawn whole by part 0
+    /// (rows `0..height`); the other parts then draw nothing (empty rows).
     ///
     /// Each frame's counts are the whole frame's, but for those of its rows'
     /// pixels: `stats.fragments_shaded`, `stats.covered_pixels` and
@@ -408,7 +408,12 @@ impl Engine {
         }
         let Loaded { options, .. } = self.load_scene(toml)?;
         let scene = &self.prepared.as_ref().expect("load_scene keeps it").scene;
-        let rows = shadelab_core::part_rows(options.height, part, parts);
+        let rows = match (shadelab_core::draws_in_parts(&options), part) {
+            (true, _) => shadelab_core::part_rows(options.height, part, parts),
+            // Drawn whole whatever the rows: by the first part alone.
+            (false, 0) => 0..options.height,
+            (false, _) => options.height..options.height,
+        };
         self.images.resize_with(3, Vec::new);
         self.images.truncate(3);
         let each = |k: usize| RenderOptions {
@@ -416,7 +421,8 @@ impl Engine {
             ..options
         };
         if rows.is_empty() {
-            // More parts than runs of rows: nothing to draw, nothing to add.
+            // More parts than runs of rows, or a frame the first part draws
+            // whole: nothing to draw, nothing to add.
             for image in &mut self.images {
                 image.clear();
             }

@@ -126,7 +126,8 @@ fn the_export_answers_three_frames_and_three_images() {
 /// (`Engine::render_methods_part`): the parts' rows, one under the other,
 /// are the whole frames' pixels; each part's frame report is the whole
 /// frame's but for its rows' pixel counts, which add up to the frame's; a
-/// mode only the scanline rasterizer draws is drawn whole by each part.
+/// mode only the scanline rasterizer draws is drawn whole by the first part
+/// and not at all by the others.
 #[test]
 fn parts_of_the_rows_drawn_by_engines_of_their_own_make_the_frames() {
     let mut whole = Engine::new();
@@ -152,11 +153,13 @@ fn parts_of_the_rows_drawn_by_engines_of_their_own_make_the_frames() {
                 for m in 0..3 {
                     let ((first, rows), _) = &answers[0];
                     if *rows == [0, 80] {
-                        // Drawn whole (scanline): every part is the frame.
-                        for ((frames, rows), images) in &answers {
-                            assert_eq!(*rows, [0, 80], "{toml}");
-                            assert_eq!(frames[m], want[m], "{toml}");
-                            assert_eq!(images[m], want_images[m], "{toml}");
+                        // Drawn whole (scanline) by the first part: it is
+                        // the frame, and the others draw nothing.
+                        assert_eq!(first[m], want[m], "{toml}");
+                        assert_eq!(answers[0].1[m], want_images[m], "{toml}");
+                        for ((_, rows), images) in &answers[1..] {
+                            assert_eq!(*rows, [80, 80], "{toml}");
+                            assert!(images[m].is_empty(), "{toml}");
                         }
                         continue;
                     }
@@ -183,8 +186,10 @@ fn parts_of_the_rows_drawn_by_engines_of_their_own_make_the_frames() {
                     let evaluations = first[m].stats.lighting_evaluations - first[m].cost.per_pixel;
                     assert_eq!(evaluations + per_pixel, w.stats.lighting_evaluations);
                 }
-                for engine in &engines {
-                    assert_eq!(engine.counts().frames, 3);
+                let whole = answers[0].0 .1 == [0, 80];
+                for (k, engine) in engines.iter().enumerate() {
+                    let drew = k == 0 || !whole;
+                    assert_eq!(engine.counts().frames, if drew { 3 } else { 0 });
                     // A part is no frame for the instruments.
                     assert!(engine.image().is_none());
                 }
@@ -201,6 +206,14 @@ fn parts_of_the_rows_drawn_by_engines_of_their_own_make_the_frames() {
     assert_eq!(rows, [0, 12]);
     let error = engine.render_methods_part(tiny, 2, 2).unwrap_err();
     assert!(error.to_string().contains("part 2 of 2"), "{error}");
+    // Drawn whole by the first part, however few the rows.
+    let tiny = "[render]\nwidth = 8\nheight = 12\nrasterizer = \"scanline\"\n";
+    let (_, rows) = engine.render_methods_part(tiny, 0, 2).unwrap();
+    assert_eq!(rows, [0, 12]);
+    assert!(engine.images().iter().all(|i| i.len() == 8 * 12 * 4));
+    let (_, rows) = engine.render_methods_part(tiny, 1, 2).unwrap();
+    assert_eq!(rows, [12, 12]);
+    assert!(engine.images().iter().all(Vec::is_empty));
 }
 
 #[test]

@@ -24,7 +24,9 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 use shadelab_core::limits::MAX_SCENE_BYTES;
 use shadelab_core::params;
-use shadelab_core::{Interpolation, Polygons, Rasterizer, Shading, Specular};
+pub use shadelab_core::params::{
+    AmbientSection, CameraSection, LightSection, MaterialSection, ModelSection, RenderSection,
+};
 pub use shadelab_core::{LightKindName, NormalsChoice};
 
 use crate::input::{read_capped, unify_line_ends};
@@ -52,192 +54,17 @@ pub struct SceneFile {
     pub render: RenderSection,
 }
 
-/// `[model]`
-#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct ModelSection {
-    /// A built-in model's name or a path to a mesh file (.obj, .stl, .ply, .gltf, .glb), relative to the scene file.
-    pub source: Option<String>,
-    /// auto | file | uniform | area | angle
-    pub normals: Option<NormalsChoice>,
-    /// Degrees: no smoothing across sharper edges.
-    pub crease_angle: Option<f32>,
-    /// Tessellation level of a built-in model.
-    pub detail: Option<u32>,
-}
-
-/// `[camera]`
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct CameraSection {
-    /// The viewer's position.
-    #[serde(deserialize_with = "exactly::three")]
-    pub eye: [f32; 3],
-    /// The point looked at.
-    #[serde(default, deserialize_with = "exactly::three")]
-    pub target: [f32; 3],
-    /// Up on the screen.
-    #[serde(default = "default_up", deserialize_with = "exactly::three")]
-    pub up: [f32; 3],
-    /// Vertical field of view, degrees.
-    #[serde(default = "default_fov")]
-    pub fov_y: f32,
-    /// Near plane distance.
-    #[serde(default = "default_near")]
-    pub near: f32,
-    /// Far plane distance.
-    #[serde(default = "default_far")]
-    pub far: f32,
-}
-
-/// Arrays of exactly three values: serde's `[T; 3]` reads three elements and
-/// lets a fourth pass unseen, so `position = [1, 2, 3, 4]` would lose its
-/// last number in silence.
-mod exactly {
-    use serde::de::{Deserialize, Deserializer, Error};
-
-    pub fn three<'de, D, T>(d: D) -> Result<[T; 3], D::Error>
-    where
-        D: Deserializer<'de>,
-        T: Deserialize<'de>,
-    {
-        let values = Vec::<T>::deserialize(d)?;
-        let found = values.len();
-        values
-            .try_into()
-            .map_err(|_| D::Error::invalid_length(found, &"an array of exactly 3 numbers"))
-    }
-
-    pub fn three_or_none<'de, D, T>(d: D) -> Result<Option<[T; 3]>, D::Error>
-    where
-        D: Deserializer<'de>,
-        T: Deserialize<'de>,
-    {
-        three(d).map(Some)
-    }
-}
-
-/// The camera's defaults: the core's table's.
-fn default_up() -> [f32; 3] {
-    params::get("camera.up").default_three().map(|c| c as f32)
-}
-fn default_fov() -> f32 {
-    params::get("camera.fov_y").default_number()
-}
-fn default_near() -> f32 {
-    params::get("camera.near").default_number()
-}
-fn default_far() -> f32 {
-    params::get("camera.far").default_number()
-}
-
-/// `[ambient]`
-#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct AmbientSection {
-    /// RGB 0–255; default white.
-    #[serde(default, deserialize_with = "exactly::three_or_none")]
-    pub color: Option<[i64; 3]>,
-    /// Default 0.2.
-    pub intensity: Option<f32>,
-}
-
-/// `[[lights]]`
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct LightSection {
-    /// point | directional
-    pub kind: LightKindName,
-    /// For a point light.
-    #[serde(default, deserialize_with = "exactly::three_or_none")]
-    pub position: Option<[f32; 3]>,
-    /// For a directional light: the direction its rays travel.
-    #[serde(default, deserialize_with = "exactly::three_or_none")]
-    pub direction: Option<[f32; 3]>,
-    /// RGB 0–255; default white.
-    #[serde(default, deserialize_with = "exactly::three_or_none")]
-    pub color: Option<[i64; 3]>,
-    /// Default 1.
-    pub intensity: Option<f32>,
-    /// A point light's fall-off: constant, linear, quadratic; default
-    /// `[1, 0, 0]`, none.
-    #[serde(default, deserialize_with = "exactly::three_or_none")]
-    pub attenuation: Option<[f32; 3]>,
-}
-
-/// `[material]`
-#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct MaterialSection {
-    /// Ambient reflectance, RGB 0–255.
-    #[serde(default, deserialize_with = "exactly::three_or_none")]
-    pub ka: Option<[i64; 3]>,
-    /// Diffuse reflectance, RGB 0–255.
-    #[serde(default, deserialize_with = "exactly::three_or_none")]
-    pub kd: Option<[i64; 3]>,
-    /// Specular reflectance, RGB 0–255.
-    #[serde(default, deserialize_with = "exactly::three_or_none")]
-    pub ks: Option<[i64; 3]>,
-    /// Specular exponent, ≥ 0.
-    pub shininess: Option<f32>,
-}
-
-/// `[render]`
-#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct RenderSection {
-    /// Pixels; default 800.
-    pub width: Option<u32>,
-    /// Pixels; default 600.
-    pub height: Option<u32>,
-    /// flat | gouraud | phong; default phong.
-    pub shading: Option<Shading>,
-    /// RGB 0–255; default black.
-    #[serde(default, deserialize_with = "exactly::three_or_none")]
-    pub background: Option<[i64; 3]>,
-    /// Default true.
-    pub cull_backfaces: Option<bool>,
-    /// Default false.
-    pub gouraud_specular: Option<bool>,
-    /// perspective | screen; default perspective.
-    pub interpolation: Option<Interpolation>,
-    /// scanline | tiled; default tiled (scanline when `polygons = "whole"`).
-    pub rasterizer: Option<Rasterizer>,
-    /// fans | whole; default fans.
-    pub polygons: Option<Polygons>,
-    /// phong | blinn-phong: the specular term's `r·v` or `n·h`; default phong.
-    pub specular: Option<Specular>,
-    /// Fraction bits of fixed-point attribute stepping (scanline only); absent: floating point.
-    pub fixed_point_bits: Option<u32>,
-    /// Shades of the material colour in an indexed palette (scanline only); absent: true colour.
-    pub palette_shades: Option<u32>,
-    /// The palette entry of the darkest shade; default 0.
-    pub palette_offset: Option<u32>,
-    /// Degrees to orbit the camera about its up axis; default 0.
-    pub yaw: Option<f32>,
-    /// Degrees to orbit the camera towards its up axis; default 0.
-    pub pitch: Option<f32>,
-    /// Magnification, [`MIN_ZOOM`]..=[`MAX_ZOOM`]: the field of view narrows
-    /// to `2·atan(tan(fov_y/2) / zoom)`; default 1.
-    pub zoom: Option<f32>,
-}
-
 /// The range of `render.zoom` (declared with the other parameters in core).
 pub use shadelab_core::params::{MAX_ZOOM, MIN_ZOOM};
 
-impl LightSection {
-    /// The light of a scene that gives none: a white point light at the
-    /// table's default position (`lights.position`).
-    pub fn default_light() -> LightSection {
-        let [x, y, z] = shadelab_core::params::get("lights.position").default_three();
-        LightSection {
-            kind: LightKindName::Point,
-            position: Some([x as f32, y as f32, z as f32]),
-            direction: None,
-            color: None,
-            intensity: None,
-            attenuation: None,
-        }
+/// The light of a scene that gives none: a white point light at the
+/// table's default position (`lights.position`).
+pub(crate) fn default_light() -> LightSection {
+    let [x, y, z] = params::get("lights.position").default_three();
+    LightSection {
+        kind: LightKindName::Point,
+        position: Some([x as f32, y as f32, z as f32]),
+        ..LightSection::default()
     }
 }
 
@@ -362,7 +189,7 @@ impl SceneFile {
             let table = match slot {
                 toml::Value::Array(lights) => {
                     if lights.is_empty() {
-                        let light = toml::Value::try_from(LightSection::default_light())
+                        let light = toml::Value::try_from(default_light())
                             .map_err(|e| bad(e.to_string()))?;
                         lights.push(light);
                     }

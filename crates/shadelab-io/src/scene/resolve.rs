@@ -18,7 +18,9 @@ use shadelab_core::{
 };
 use shadelab_core::{escape_token, format_number};
 
-use super::{value_error, LightKindName, LightSection, NormalsChoice, SceneError, SceneFile};
+use super::{
+    default_light, value_error, LightKindName, LightSection, NormalsChoice, SceneError, SceneFile,
+};
 use crate::{load_mesh_file, FileMaterial};
 
 impl SceneFile {
@@ -283,12 +285,12 @@ impl SceneFile {
         let camera = match &self.camera {
             Some(c) => {
                 let camera = Camera {
-                    eye: vec3("camera.eye", c.eye)?,
+                    eye: vec3("camera.eye", Some(c.eye))?,
                     target: vec3("camera.target", c.target)?,
                     up: vec3("camera.up", c.up)?,
-                    fov_y_degrees: number("camera.fov_y", Some(c.fov_y))?,
-                    near: number("camera.near", Some(c.near))?,
-                    far: number("camera.far", Some(c.far))?,
+                    fov_y_degrees: number("camera.fov_y", c.fov_y)?,
+                    near: number("camera.near", c.near)?,
+                    far: number("camera.far", c.far)?,
                 };
                 camera
                     .validate()
@@ -339,7 +341,7 @@ impl SceneFile {
         let ambient_intensity = number("ambient.intensity", a.intensity)?;
         let ambient = rgb("ambient.color", a.color)? * ambient_intensity;
 
-        let default_lights = [LightSection::default_light()];
+        let default_lights = [default_light()];
         let light_sections = self.lights.as_deref().unwrap_or(&default_lights);
         let lights = light_sections
             .iter()
@@ -478,10 +480,10 @@ fn whole(key: &str, v: u32) -> Result<u32, SceneError> {
     Ok(v)
 }
 
-/// A camera vector, checked against the table's range.
-fn vec3(key: &str, v: [f32; 3]) -> Result<Vec3, SceneError> {
-    params::get(key)
-        .check_vec3(v)
+/// A camera vector, or its default, checked against the table's range.
+fn vec3(key: &str, v: Option<[f32; 3]>) -> Result<Vec3, SceneError> {
+    let p = params::get(key);
+    p.check_vec3(v.unwrap_or_else(|| p.default_three().map(|c| c as f32)))
         .map(Vec3::from_array)
         .map_err(|e| value_error(key, e))
 }

@@ -1,16 +1,24 @@
 //! Every user-facing number, colour, vector, switch and name of a scene,
-//! declared once: its scene-file key, kind, default, range, unit and help.
+//! declared once: its scene-file key, kind, default, range, unit, help,
+//! label and flag.
 //!
-//! The scene file's checks (`shadelab-io`) take their ranges and messages
-//! from here, the command line's override flags their help, and the page
-//! its defaults, ranges and choice lists, from [`schema_json`] (served as
-//! `params.json`). Adding a parameter is one entry in [`all`]'s table, then
+//! The declaration (`table.rs`, through the `declare!` macro of
+//! `declare.rs`) makes three things: the table of parameters ([`all`]),
+//! the schema's lists of choices, and the scene file's sections
+//! ([`ModelSection`] … [`RenderSection`], the serde structs `shadelab-io`
+//! reads a file into, one field per declared key). From the table come the
+//! scene file's checks (ranges, defaults and messages), the command line's
+//! override flags and the page's controls, from [`schema_json`] (served as
+//! `params.json`). Adding a parameter is one field in the declaration, then
 //! its use where it acts. Defaults that belong to a type of the core
-//! ([`Material::default`], [`RenderOptions::default`]) are read from it, so
-//! they stay declared where they act.
+//! ([`crate::Material::default`], [`crate::RenderOptions::default`]) are
+//! read from it, so they stay declared where they act.
 //!
-//! The enumerated choices are declared with their types ([`crate::choice`]);
-//! the schema lists them too, by scene-file key.
+//! The enumerated choices' values are declared with their types
+//! ([`crate::choice`]); the declaration says which key chooses which.
+
+mod declare;
+mod table;
 
 use std::sync::OnceLock;
 
@@ -18,14 +26,11 @@ use serde_json::{json, Value as Json};
 
 use crate::choice::Choice;
 use crate::color::Rgb8;
-use crate::light::{LightKindName, Material, Specular, NO_ATTENUATION};
-use crate::limits::{MAX_IMAGE_SIDE, MAX_SCENE_COORDINATE};
-use crate::models::BUILTIN_MODELS;
-use crate::normals::NormalsChoice;
-use crate::palette::Palette;
-use crate::scene::{Interpolation, Polygons, Rasterizer, RenderOptions, Shading};
-use crate::scene::{MAX_FRACTION_BITS, MIN_FRACTION_BITS};
 use crate::text::format_number;
+
+pub use table::{
+    AmbientSection, CameraSection, LightSection, MaterialSection, ModelSection, RenderSection,
+};
 
 /// Smallest `render.zoom`.
 pub const MIN_ZOOM: f32 = 0.1;
@@ -159,6 +164,25 @@ pub const XYZ: &[&str] = &["x", "y", "z"];
 pub const ATTENUATION_TERMS: &[&str] = &["constant", "linear", "quadratic"];
 
 impl Param {
+    /// A parameter with nothing set, which each declaration completes
+    /// (`Param { key, kind, help, …, ..Param::BLANK }`).
+    pub(crate) const BLANK: Param = Param {
+        key: "",
+        kind: Kind::Number,
+        default: None,
+        absent: "",
+        typical: None,
+        min: 0.0,
+        max: 0.0,
+        unit: "",
+        help: "",
+        needs: "",
+        label: "",
+        parts: &[],
+        flag: "",
+        open: Open::Neither,
+    };
+
     /// `min..=max` with the unit, as messages and help show it
     /// ("0..=180 degrees", "each channel 0..=255", "within ±1e30").
     pub fn range_text(&self) -> String {
@@ -334,7 +358,7 @@ fn decimal(v: f32) -> f64 {
 /// Every user-facing parameter, in the order the documentation lists them.
 pub fn all() -> &'static [Param] {
     static TABLE: OnceLock<Vec<Param>> = OnceLock::new();
-    TABLE.get_or_init(table)
+    TABLE.get_or_init(table::table)
 }
 
 /// The parameter of scene-file key `key`.
@@ -349,280 +373,8 @@ pub fn get(key: &str) -> &'static Param {
         .unwrap_or_else(|| panic!("no parameter {key}"))
 }
 
-/// The table. Entries are built by [`entry`] and completed with
-/// `Param { field, ..entry(...) }` where they have more than a range.
-fn table() -> Vec<Param> {
-    let material = Material::default();
-    let options = RenderOptions::default();
-    let rgb = |c: Rgb8| Some(Value::Three(c.0.map(f64::from)));
-    let white = Some(Value::Three([255.0; 3]));
-    let number = |v: f64| Some(Value::Number(v));
-    let max_detail = BUILTIN_MODELS
-        .iter()
-        .map(|m| m.detail_range.1)
-        .max()
-        .unwrap_or(0);
-    vec![
-        Param {
-            default: Some(Value::Text("teapot")),
-            label: "Model",
-            ..entry("model.source", Kind::Text, 0.0, 0.0, "",
-                "A built-in model's name or a mesh file (.obj, .stl, .ply, .gltf, .glb), relative to the scene file.")
-        },
-        Param {
-            absent: "the model's own",
-            label: "Detail",
-            flag: "detail",
-            ..entry("model.detail", Kind::Integer, 0.0, f64::from(max_detail), "",
-                "Tessellation level of a built-in model, within that model's own range.")
-        },
-        Param {
-            absent: "the model's own (none for a file)",
-            label: "Crease angle",
-            flag: "crease-angle",
-            ..entry("model.crease_angle", Kind::Number, 0.0, 180.0, "degrees",
-                "No smoothing of vertex normals across edges sharper than this.")
-        },
-        Param {
-            default: white,
-            label: "Ambient colour",
-            parts: RGB,
-            flag: "ambient",
-            ..entry("ambient.color", Kind::Rgb, 0.0, 255.0, "", "Colour of the ambient light.")
-        },
-        Param {
-            default: number(0.2),
-            label: "Ambient intensity",
-            flag: "ambient-intensity",
-            ..entry("ambient.intensity", Kind::Number, 0.0, 100.0, "",
-                "Intensity multiplying the ambient light's colour.")
-        },
-        Param {
-            default: Some(Value::Three([2.0, 2.0, 3.0])),
-            label: "Position",
-            parts: XYZ,
-            flag: "light-pos",
-            ..entry("lights.position", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
-                decimal(MAX_SCENE_COORDINATE), "",
-                "Where a point light is, in world coordinates (the default light's position).")
-        },
-        Param {
-            absent: "required by a directional light",
-            typical: Some(Value::Three([-1.0, -1.0, -1.0])),
-            label: "Direction",
-            parts: XYZ,
-            ..entry("lights.direction", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
-                decimal(MAX_SCENE_COORDINATE), "",
-                "The direction a directional light's rays travel, not zero.")
-        },
-        Param {
-            default: white,
-            label: "Colour",
-            parts: RGB,
-            flag: "light-color",
-            ..entry("lights.color", Kind::Rgb, 0.0, 255.0, "", "Colour of a light.")
-        },
-        Param {
-            default: number(1.0),
-            label: "Intensity",
-            flag: "light-intensity",
-            ..entry("lights.intensity", Kind::Number, 0.0, 100.0, "",
-                "Intensity multiplying a light's colour.")
-        },
-        Param {
-            default: Some(Value::Three(NO_ATTENUATION.map(f64::from))),
-            label: "Fall-off",
-            parts: ATTENUATION_TERMS,
-            flag: "light-attenuation",
-            ..entry("lights.attenuation", Kind::Vec3, 0.0, 1e6, "",
-                "A point light's fall-off with distance d: its light is divided by \
-                 constant + linear·d + quadratic·d² (the three numbers, as OpenGL's); \
-                 [1, 0, 0] is none.")
-        },
-        Param {
-            default: rgb(Rgb8::from_rgb(material.ka)),
-            label: "Ka",
-            parts: RGB,
-            flag: "ka",
-            ..entry("material.ka", Kind::Rgb, 0.0, 255.0, "", "Ambient reflectance Ka.")
-        },
-        Param {
-            default: rgb(Rgb8::from_rgb(material.kd)),
-            label: "Kd",
-            parts: RGB,
-            flag: "kd",
-            ..entry("material.kd", Kind::Rgb, 0.0, 255.0, "", "Diffuse reflectance Kd.")
-        },
-        Param {
-            default: rgb(Rgb8::from_rgb(material.ks)),
-            label: "Ks",
-            parts: RGB,
-            flag: "ks",
-            ..entry("material.ks", Kind::Rgb, 0.0, 255.0, "", "Specular reflectance Ks.")
-        },
-        Param {
-            default: number(decimal(material.shininess)),
-            label: "Shininess",
-            flag: "shininess",
-            ..entry("material.shininess", Kind::Number, 0.0, 10000.0, "",
-                "Specular exponent: the larger, the smaller and sharper the highlight.")
-        },
-        Param {
-            absent: "the camera frames the model's bounding sphere; required in [camera]",
-            typical: Some(Value::Three([0.0, 0.0, 3.0])),
-            label: "Eye",
-            parts: XYZ,
-            ..entry("camera.eye", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
-                decimal(MAX_SCENE_COORDINATE), "", "Where the camera is, in world coordinates.")
-        },
-        Param {
-            default: Some(Value::Three([0.0; 3])),
-            label: "Target",
-            parts: XYZ,
-            ..entry("camera.target", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
-                decimal(MAX_SCENE_COORDINATE), "", "The point the camera looks at.")
-        },
-        Param {
-            default: Some(Value::Three([0.0, 1.0, 0.0])),
-            label: "Up",
-            parts: XYZ,
-            ..entry("camera.up", Kind::Vec3, -decimal(MAX_SCENE_COORDINATE),
-                decimal(MAX_SCENE_COORDINATE), "",
-                "Up on the screen: any vector not along the line of sight.")
-        },
-        Param {
-            default: number(45.0),
-            label: "Field of view",
-            open: Open::Both,
-            ..entry("camera.fov_y", Kind::Number, 0.0, 180.0, "degrees",
-                "The vertical field of view.")
-        },
-        Param {
-            default: number(0.1),
-            label: "Near plane",
-            open: Open::Min,
-            ..entry("camera.near", Kind::Number, 0.0, decimal(MAX_SCENE_COORDINATE), "",
-                "Distance to the near clipping plane, less than far.")
-        },
-        Param {
-            default: number(100.0),
-            label: "Far plane",
-            open: Open::Min,
-            ..entry("camera.far", Kind::Number, 0.0, decimal(MAX_SCENE_COORDINATE), "",
-                "Distance to the far clipping plane, more than near.")
-        },
-        Param {
-            default: number(f64::from(options.width)),
-            label: "Width",
-            ..entry("render.width", Kind::Integer, 1.0, f64::from(MAX_IMAGE_SIDE), "pixels",
-                "Width of the image.")
-        },
-        Param {
-            default: number(f64::from(options.height)),
-            label: "Height",
-            ..entry("render.height", Kind::Integer, 1.0, f64::from(MAX_IMAGE_SIDE), "pixels",
-                "Height of the image.")
-        },
-        Param {
-            default: rgb(options.background),
-            label: "Background",
-            parts: RGB,
-            flag: "background",
-            ..entry("render.background", Kind::Rgb, 0.0, 255.0, "", "Colour where nothing is drawn.")
-        },
-        Param {
-            default: Some(Value::Bool(options.cull_backfaces)),
-            label: "Cull back faces",
-            ..entry("render.cull_backfaces", Kind::Bool, 0.0, 0.0, "",
-                "Skip polygons facing away from the viewer (false: draw them lit from behind).")
-        },
-        Param {
-            default: Some(Value::Bool(options.gouraud_specular)),
-            label: "Specular in Gouraud",
-            flag: "gouraud-specular",
-            ..entry("render.gouraud_specular", Kind::Bool, 0.0, 0.0, "",
-                "Include the specular term in Gouraud shading's vertex lighting.")
-        },
-        Param {
-            absent: "floating point",
-            typical: number(8.0),
-            label: "Fixed-point bits",
-            flag: "fixed-point",
-            ..entry("render.fixed_point_bits", Kind::Integer, f64::from(MIN_FRACTION_BITS),
-                f64::from(MAX_FRACTION_BITS), "bits",
-                "Step attributes in fixed point with this many fraction bits (scanline rasterizer).")
-        },
-        Param {
-            absent: "true colour",
-            typical: number(8.0),
-            label: "Palette shades",
-            flag: "palette",
-            ..entry("render.palette_shades", Kind::Integer, f64::from(Palette::MIN_SHADES),
-                f64::from(Palette::ENTRIES), "shades",
-                "Draw with an indexed palette of this many shades of the material colour (scanline rasterizer).")
-        },
-        Param {
-            default: number(0.0),
-            needs: "render.palette_shades",
-            label: "Palette offset",
-            flag: "palette-offset",
-            ..entry("render.palette_offset", Kind::Integer, 0.0,
-                f64::from(Palette::ENTRIES - Palette::MIN_SHADES), "",
-                "The palette entry of the darkest shade; offset + shades is at most 256.")
-        },
-        Param {
-            default: number(0.0),
-            label: "Yaw",
-            flag: "yaw",
-            ..entry("render.yaw", Kind::Number, -1e6, 1e6, "degrees",
-                "Orbit the camera about its up axis.")
-        },
-        Param {
-            default: number(0.0),
-            label: "Pitch",
-            flag: "pitch",
-            ..entry("render.pitch", Kind::Number, -180.0, 180.0, "degrees",
-                "Orbit the camera towards its up axis; the elevation stops at ±89 degrees.")
-        },
-        Param {
-            default: number(1.0),
-            label: "Zoom",
-            flag: "zoom",
-            ..entry("render.zoom", Kind::Number, decimal(MIN_ZOOM), decimal(MAX_ZOOM), "",
-                "Magnification: the field of view narrows to 2·atan(tan(fov_y/2)/zoom).")
-        },
-    ]
-}
-
-/// A parameter with a range and no default yet.
-fn entry(
-    key: &'static str,
-    kind: Kind,
-    min: f64,
-    max: f64,
-    unit: &'static str,
-    help: &'static str,
-) -> Param {
-    Param {
-        key,
-        kind,
-        default: None,
-        absent: "",
-        typical: None,
-        min,
-        max,
-        unit,
-        help,
-        needs: "",
-        label: "",
-        parts: &[],
-        flag: "",
-        open: Open::Neither,
-    }
-}
-
 /// A choice's list for the schema: its default and each value's name and help.
-fn choice<T: Choice + Default>(key: &str) -> Json {
+fn choice_list<T: Choice + Default>(key: &str) -> Json {
     json!({
         "key": key,
         "what": T::WHAT,
@@ -656,15 +408,7 @@ pub fn schema() -> Json {
             })
         })
         .collect::<Vec<_>>();
-    let choices = vec![
-        choice::<Shading>("render.shading"),
-        choice::<Interpolation>("render.interpolation"),
-        choice::<Rasterizer>("render.rasterizer"),
-        choice::<Polygons>("render.polygons"),
-        choice::<Specular>("render.specular"),
-        choice::<NormalsChoice>("model.normals"),
-        choice::<LightKindName>("lights.kind"),
-    ];
+    let choices = table::choice_lists();
     json!({ "params": params, "choices": choices })
 }
 
