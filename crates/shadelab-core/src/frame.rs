@@ -209,21 +209,17 @@ impl Renderer {
                 align: ROW_ALIGN,
             });
         }
+        let each = Shading::ALL.map(|shading| RenderOptions {
+            shading,
+            ..*options
+        });
         if !draws_in_parts(options) {
-            let each = Shading::ALL.map(|shading| RenderOptions {
-                shading,
-                ..*options
-            });
             let mut stats = [RenderStats::default(); 3];
             for ((options, image), stats) in each.iter().zip(images).zip(&mut stats) {
                 *stats = self.render_into(scene, options, image)?;
             }
             return Ok((stats, 0..height));
         }
-        let each = Shading::ALL.map(|shading| RenderOptions {
-            shading,
-            ..*options
-        });
         for options in &each {
             options.check()?;
         }
