@@ -1,10 +1,13 @@
-//! What every rasterizer shares: window-space vertices in fixed point, the
-//! fragment output interface and the interpolation modes.
+//! What every rasterizer shares: window-space vertices in fixed point,
+//! polygon assembly (`assemble.rs`, the front end handing both rasterizers
+//! their clipped window-space polygons), the fragment output interface and
+//! the interpolation modes.
 //!
 //! Window coordinates are snapped to 1/256 pixel ([`SUBPIXEL_BITS`] = 8) once,
 //! by [`snap`]; coverage is then decided in exact integer arithmetic, so two
 //! rasterizers fed the same vertices agree on every pixel.
 
+pub(crate) mod assemble;
 pub mod scanline;
 pub(crate) mod tiled;
 

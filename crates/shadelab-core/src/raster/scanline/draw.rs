@@ -1,17 +1,18 @@
-//! The scanline rasterizer's frame: clip, project and rasterize each
-//! polygon in order, through a shading method (`shade::scalar`) into a
+//! The scanline rasterizer's frame: polygon assembly (`raster/assemble.rs`)
+//! hands over each polygon in order, clipped and in window space, and the
+//! rasterizer fills it through a shading method (`shade::scalar`) into a
 //! [`Target`] (the image and depth buffer, a coverage counter, or a probe).
 
-use glam::{Mat4, Vec4};
+use glam::{Mat4, Vec3};
 
 use super::{rasterize_fan_with, rasterize_polygon_with, ScanlineOptions, SpanTrace};
-use crate::clip::{clip_polygon, ClipVertex};
 use crate::color::{Rgb, Rgb8};
 use crate::image::Image;
+use crate::mesh::Mesh;
 use crate::normals::face_normals;
-use crate::raster::{
-    guard_band, signed_area_ccw, to_window, FragmentSink, Rasterize, ScreenVertex,
-};
+use crate::palette::Palette;
+use crate::raster::assemble::{project_vertices, Assembly, PolygonSink, Projected, Scratch, View};
+use crate::raster::{guard_band, FragmentSink, Rasterize, ScreenVertex};
 use crate::scene::{Polygons, RenderOptions, RenderStats, Scene};
 use crate::shade::{
     with_method, Indexed, Lighting, Method, MethodVisitor, Output, SceneRefs, TrueColor,
@@ -208,28 +209,53 @@ impl<T: Target> MethodVisitor for Draw<'_, T> {
     }
 }
 
-/// Rasterizes one window polygon through the method into the target;
-/// returns the fragments shaded.
-fn fill<const N: usize, M: Method<N>, T: Target, O: Output>(
-    window: &[ScreenVertex<N>],
-    options: &RenderOptions,
-    walk: &ScanlineOptions,
-    method: &mut M,
-    target: &mut T,
-    output: O,
-) -> u64 {
-    let (width, height) = (options.width, options.height);
-    let mut sink = ShadingSink {
-        method,
-        target,
-        shaded: 0,
-        output,
-    };
-    match options.polygons {
-        Polygons::Fans => rasterize_fan_with(window, width, height, walk, &mut sink),
-        Polygons::Whole => rasterize_polygon_with(window, width, height, walk, &mut sink),
+/// The scanline rasterizer's end of polygon assembly: each polygon
+/// rasterized whole (or as its fan) through the method into the target.
+struct Fill<'a, const N: usize, M, T> {
+    mesh: &'a Mesh,
+    options: &'a RenderOptions,
+    walk: ScanlineOptions,
+    /// The palette, and the material colour its shades are of.
+    palette: Option<(Palette, Rgb)>,
+    method: &'a mut M,
+    target: &'a mut T,
+    shaded: u64,
+}
+
+impl<const N: usize, M: Method<N>, T: Target> PolygonSink<N> for Fill<'_, N, M, T> {
+    fn corner(&mut self, corner: usize, vertex: u32, back: bool) -> [f32; N] {
+        self.method.corner(corner, vertex, back)
     }
-    sink.shaded
+
+    fn polygon(&mut self, face: usize, _: Vec3, back: bool, window: &[ScreenVertex<N>]) {
+        self.method
+            .begin_polygon(face, self.mesh.corner_range(face), back);
+        self.target.polygon(face, back);
+        self.shaded += match self.palette {
+            None => self.fill(window, TrueColor),
+            Some((palette, kd)) => self.fill(window, Indexed(palette, kd)),
+        };
+    }
+}
+
+impl<const N: usize, M: Method<N>, T: Target> Fill<'_, N, M, T> {
+    /// Rasterizes one window polygon through the method into the target;
+    /// returns the fragments shaded.
+    fn fill<O: Output>(&mut self, window: &[ScreenVertex<N>], output: O) -> u64 {
+        let (width, height) = (self.options.width, self.options.height);
+        let mut sink = ShadingSink {
+            method: &mut *self.method,
+            target: &mut *self.target,
+            shaded: 0,
+            output,
+        };
+        let walk = &self.walk;
+        match self.options.polygons {
+            Polygons::Fans => rasterize_fan_with(window, width, height, walk, &mut sink),
+            Polygons::Whole => rasterize_polygon_with(window, width, height, walk, &mut sink),
+        }
+        sink.shaded
+    }
 }
 
 fn draw_with<const N: usize, M: Method<N>, T: Target>(
@@ -241,71 +267,40 @@ fn draw_with<const N: usize, M: Method<N>, T: Target>(
 ) -> RenderStats {
     let (width, height) = (options.width, options.height);
     let mesh = scene.mesh;
-    let clip_positions: Vec<Vec4> = mesh
-        .positions()
-        .iter()
-        .map(|p| view_projection * p.extend(1.0))
-        .collect();
-    let guard = guard_band(width, height);
+    let view = View {
+        view_projection,
+        width,
+        height,
+        guard: guard_band(width, height),
+    };
+    let mut projected = vec![Projected::default(); mesh.positions().len()];
+    project_vertices(&view, mesh.positions(), &mut projected);
+    let assembly = Assembly {
+        mesh,
+        faces: &scene.faces,
+        projected: &projected,
+        view,
+        cull_backfaces: options.cull_backfaces,
+    };
     let mut stats = RenderStats {
         polygons: mesh.polygon_count() as u64,
         ..RenderStats::default()
     };
-    let (mut input, mut clipped, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
-    let mut window: Vec<ScreenVertex<N>> = Vec::new();
-    let mut shaded = 0;
-    let walk = ScanlineOptions {
-        interpolation: options.interpolation,
-        fraction_bits: options.fixed_point_bits,
+    let mut fill = Fill {
+        mesh,
+        options,
+        walk: ScanlineOptions {
+            interpolation: options.interpolation,
+            fraction_bits: options.fixed_point_bits,
+        },
+        palette: options.palette.map(|p| (p, scene.lighting.material.kd)),
+        method,
+        target,
+        shaded: 0,
     };
-
-    let mut project =
-        |method: &mut M, face: usize, back: bool, window: &mut Vec<ScreenVertex<N>>| {
-            input.clear();
-            for c in mesh.corner_range(face) {
-                let vertex = mesh.corners()[c];
-                input.push(ClipVertex {
-                    clip: clip_positions[vertex as usize],
-                    attrs: method.corner(c, vertex, back),
-                });
-            }
-            clip_polygon(&input, guard, &mut clipped, &mut scratch);
-            window.clear();
-            window.extend(clipped.iter().map(|v| to_window(v, width, height)));
-        };
-
-    for face in 0..mesh.polygon_count() {
-        if scene.faces[face].is_none() {
-            stats.degenerate += 1;
-            continue;
-        }
-        project(method, face, false, &mut window);
-        let area = signed_area_ccw(&window);
-        if window.len() < 3 || area == 0 {
-            stats.invisible += 1;
-            continue;
-        }
-        let back = area < 0;
-        if back {
-            if options.cull_backfaces {
-                stats.culled += 1;
-                continue;
-            }
-            project(method, face, true, &mut window);
-            window.reverse();
-        }
-        stats.rasterized += 1;
-        method.begin_polygon(face, mesh.corner_range(face), back);
-        target.polygon(face, back);
-        shaded += match options.palette {
-            None => fill(&window, options, &walk, method, target, TrueColor),
-            Some(p) => {
-                let output = Indexed(p, scene.lighting.material.kd);
-                fill(&window, options, &walk, method, target, output)
-            }
-        };
-    }
-    stats.fragments_shaded = shaded;
-    stats.lighting_evaluations = method.evaluations();
+    let faces = 0..mesh.polygon_count();
+    assembly.walk(faces, &mut Scratch::default(), &mut fill, &mut stats);
+    stats.fragments_shaded = fill.shaded;
+    stats.lighting_evaluations = fill.method.evaluations();
     stats
 }

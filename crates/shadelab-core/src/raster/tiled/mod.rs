@@ -4,25 +4,29 @@
 //!
 //! The pipeline of a frame:
 //!
-//! 1. **Vertices** (parallel): each position transformed and snapped once;
-//!    Gouraud lights each distinct (position, normal) 8 at a time.
-//! 2. **Setup** (parallel, in chunks of consecutive polygons): a triangle
-//!    whose corners are all inside the view volume goes straight from the
-//!    projected positions: facing from the snapped area, culling before any
-//!    attribute is read, the bounding box's pixel centres (none: done), edge
-//!    functions and attribute planes. Anything else (clipped, back faces drawn,
-//!    polygons) takes the general path. Each triangle is copied, with its
-//!    planes, into the bin of every band it touches.
+//! 1. **Vertices** (parallel): each position transformed and snapped once
+//!    (`raster/assemble.rs`'s vertex stage); Gouraud lights each distinct
+//!    (position, normal) 8 at a time.
+//! 2. **Setup** (parallel, in chunks of consecutive polygons): each chunk
+//!    is walked by polygon assembly (`raster/assemble.rs`: facing, culling
+//!    before any attribute is read, clipping when needed), which hands its
+//!    polygons to the chunk's sink (`chunk.rs`). A front-facing triangle
+//!    needing no clipping (nearly all of them) goes straight from the
+//!    projected positions: the bounding box's pixel centres (none: done),
+//!    edge functions and attribute planes. Anything else (clipped, back
+//!    faces drawn, polygons) is split into the fan both rasterizers use.
+//!    Each triangle is copied, with its planes, into the bin of every band
+//!    it touches.
 //! 3. **Bands** (parallel): a band reads its chunks' bins in order (see
 //!    `band.rs`), then writes its rows of the image.
 //!
 //! What must hold, and why it is built this way:
 //!
 //! * **The same pixels as the scanline reference.** Every polygon goes
-//!   through the same clipping ([`crate::clip_polygon`]), the same viewport
-//!   transform and snapping ([`crate::raster::to_window`]), the same facing
-//!   decision and the same [`crate::raster::fan`] as the scanline rasterizer
-//!   drawing fans, so both see identical snapped triangles; coverage is then
+//!   through the same assembly (`raster/assemble.rs`: clipping, viewport
+//!   transform and snapping, facing) and the same [`crate::raster::fan`] as
+//!   the scanline rasterizer drawing fans, so both see identical snapped
+//!   triangles; coverage is then
 //!   exact integer arithmetic in both (see `setup.rs`). Colours differ only
 //!   by f32 rounding: within 1/255, checked by the equivalence tests.
 //! * **Per-vertex work once per vertex.** Positions are transformed and
@@ -72,15 +76,15 @@ use rayon::prelude::*;
 
 use self::band::{band_rows, Band, Colors, Pass};
 
-use self::chunk::{clip_position, Chunk, Frame, Projected, SetupKernel};
+use self::chunk::{Chunk, Frame, SetupKernel};
 pub(crate) use self::setup::BAND_ROWS;
 use self::setup::{plane_count, PLANES};
 use self::vertices::{light_vertices, FaceNormals, VertexTable};
 
-use crate::clip::{is_inside, ClipVertex};
 use crate::color::Rgb8;
 use crate::image::Image;
-use crate::raster::{guard_band, to_window, Rasterize};
+use crate::raster::assemble::{project_vertices, Assembly, Projected, View};
+use crate::raster::{guard_band, Rasterize};
 use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::{AllMethods, FlatShader, GouraudShader, Lighting, PhongShader, Shader};
 use crate::simd::{dispatch, Kernel, Simd, SimdLevel};
@@ -432,8 +436,12 @@ impl TiledRasterizer {
     ) -> RenderStats {
         let (width, height) = (options.width, options.height);
         let aspect = width as f32 / height as f32;
-        let view_projection = scene.camera.projection(aspect) * scene.camera.view();
-        let guard = guard_band(width, height);
+        let view = View {
+            view_projection: scene.camera.projection(aspect) * scene.camera.view(),
+            width,
+            height,
+            guard: guard_band(width, height),
+        };
         let mesh = &scene.mesh;
         self.phong.update(lighting);
 
@@ -446,25 +454,7 @@ impl TiledRasterizer {
             projected
                 .par_chunks_mut(4096)
                 .zip(positions.par_chunks(4096))
-                .for_each(|(out, points)| {
-                    for (o, p) in out.iter_mut().zip(points) {
-                        let clip = clip_position(view_projection, *p);
-                        *o = if clip.is_finite() && is_inside(clip, guard) {
-                            let w = to_window(&ClipVertex { clip, attrs: [] }, width, height);
-                            Projected {
-                                x: w.x as i32,
-                                y: w.y as i32,
-                                depth: w.depth,
-                                inv_w: w.inv_w,
-                            }
-                        } else {
-                            Projected {
-                                x: Projected::OUTSIDE,
-                                ..Projected::default()
-                            }
-                        };
-                    }
-                });
+                .for_each(|(out, points)| project_vertices(&view, points, out));
         };
         let (vertices, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
         let (phong, simd) = (&self.phong, self.simd);
@@ -494,17 +484,20 @@ impl TiledRasterizer {
             scene,
             options,
             method,
-            projected: &self.projected,
-            view_projection,
             corner_vertex: &self.vertices.corner_vertex,
-            faces: &self.faces.normals,
             phong: &self.phong,
             simd: self.simd,
             lit: &self.lit,
             lit_back: &self.lit_back,
-            guard,
             bands,
             rows: rows.start as i32..rows.end as i32,
+        };
+        let assembly = Assembly {
+            mesh,
+            faces: &self.faces.normals,
+            projected: &self.projected,
+            view,
+            cull_backfaces: options.cull_backfaces,
         };
         let polygons = mesh.polygon_count();
         self.chunks
@@ -518,6 +511,7 @@ impl TiledRasterizer {
                     SetupKernel {
                         chunk,
                         frame: &frame,
+                        assembly: &assembly,
                         faces: start..end,
                     },
                 );

@@ -1,0 +1,561 @@
+//! Polygon assembly, the one front end of both rasterizers: from a mesh's
+//! polygons to clipped, window-space, counter-clockwise polygons with
+//! their attributes, handed to a [`PolygonSink`].
+//!
+//! Every polygon of a frame takes this walk, in the scanline rasterizer
+//! (one sink for the frame) and in the tiled one (one per setup chunk):
+//!
+//! 1. **Degenerate** polygons (no face normal) are counted and dropped.
+//! 2. **Facing** comes first, from the snapped positions of the vertex
+//!    stage ([`project_vertices`]) when no corner needs clipping, so that a
+//!    culled polygon costs no attribute work; otherwise the polygon is
+//!    clipped ([`clip_polygon`]) with its front attributes and faced from
+//!    the clipped window polygon.
+//! 3. **Culling** drops back faces when asked; a back face drawn gets its
+//!    back attributes (normals reversed) and is reversed to wind
+//!    counter-clockwise, as a front face.
+//! 4. The sink receives the polygon: [`PolygonSink::triangle`] for the
+//!    common case, a front-facing triangle needing no clipping (its
+//!    snapped corners, attributes read by the sink only if it draws
+//!    something), [`PolygonSink::polygon`] for the rest.
+//!
+//! What must hold, and why it is built this way:
+//!
+//! * **Both rasterizers see the same polygons.** The same positions,
+//!   snapping, clipping and facing decisions, so their coverage can be
+//!   compared pixel for pixel. A polygon whose vertices are all inside the
+//!   view volume and guard band skips clipping, because clipping would
+//!   return it unchanged ([`crate::clip::is_inside`]).
+//! * **Nothing here is paid per polygon that need not be.** The walk is
+//!   generic over the sink and inlined into each rasterizer's loop; the
+//!   corners' attribute sources are prefetched a few polygons ahead
+//!   (meshes list their faces far from their vertices' order).
+
+use std::ops::Range;
+
+use glam::{Mat4, Vec3, Vec4};
+
+use super::{signed_area_ccw, to_window, ScreenVertex};
+use crate::clip::{clip_polygon, is_inside, ClipVertex};
+use crate::mesh::Mesh;
+use crate::scene::RenderStats;
+use crate::simd::prefetch;
+
+/// How many polygons ahead the walk starts loading a polygon's vertices.
+const PREFETCH_AHEAD: usize = 8;
+
+/// A vertex's window position, when it is inside the view volume and guard
+/// band (`x == OUTSIDE` otherwise). Snapped coordinates stay within ±2^29,
+/// so they fit in `i32`; 16 bytes, so that the walk's random accesses stay
+/// in cache.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Projected {
+    pub(crate) x: i32,
+    pub(crate) y: i32,
+    pub(crate) depth: f32,
+    pub(crate) inv_w: f32,
+}
+
+impl Projected {
+    pub(crate) const OUTSIDE: i32 = i32::MIN;
+
+    pub(crate) fn inside(&self) -> bool {
+        self.x != Projected::OUTSIDE
+    }
+
+    /// The window vertex, with attributes `attrs`.
+    #[inline(always)]
+    pub(crate) fn vertex<const N: usize>(&self, attrs: [f32; N]) -> ScreenVertex<N> {
+        ScreenVertex {
+            x: i64::from(self.x),
+            y: i64::from(self.y),
+            depth: self.depth,
+            inv_w: self.inv_w,
+            attrs,
+        }
+    }
+}
+
+/// Where a frame's positions land: the camera's transform and the window.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct View {
+    pub(crate) view_projection: Mat4,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    /// The guard band, in NDC units ([`super::guard_band`]).
+    pub(crate) guard: f32,
+}
+
+impl View {
+    /// A position in clip space: one expression for the vertex stage and
+    /// for the polygons that clipping recomputes, so both see the same
+    /// values.
+    #[inline(always)]
+    pub(crate) fn clip(&self, p: Vec3) -> Vec4 {
+        self.view_projection * p.extend(1.0)
+    }
+}
+
+/// The vertex stage: each position transformed and snapped once, into
+/// `out` (as long as `points`).
+pub(crate) fn project_vertices(view: &View, points: &[Vec3], out: &mut [Projected]) {
+    for (o, p) in out.iter_mut().zip(points) {
+        let clip = view.clip(*p);
+        *o = if clip.is_finite() && is_inside(clip, view.guard) {
+            let w = to_window(&ClipVertex { clip, attrs: [] }, view.width, view.height);
+            Projected {
+                x: w.x as i32,
+                y: w.y as i32,
+                depth: w.depth,
+                inv_w: w.inv_w,
+            }
+        } else {
+            Projected {
+                x: Projected::OUTSIDE,
+                ..Projected::default()
+            }
+        };
+    }
+}
+
+/// What receives the assembled polygons: a rasterizer's setup (tiled) or
+/// its fill (scanline). `N` attributes per corner.
+pub(crate) trait PolygonSink<const N: usize> {
+    /// The attributes at corner `corner` (of vertex `vertex`), of the
+    /// polygon's front side or, with `back`, its back (normals reversed).
+    fn corner(&mut self, corner: usize, vertex: u32, back: bool) -> [f32; N];
+
+    /// A visible polygon `face` (unit normal `normal`): clipped, in window
+    /// space, counter-clockwise, with its attributes, `back` when it is
+    /// seen from behind (its attributes are then the back's).
+    fn polygon(&mut self, face: usize, normal: Vec3, back: bool, window: &[ScreenVertex<N>]);
+
+    /// A front-facing triangle needing no clipping: polygon `face`, its
+    /// corners `first_corner..first_corner + 3` (of vertices `vertices`) at
+    /// the snapped positions `p`. The default reads the attributes and
+    /// hands it to [`PolygonSink::polygon`]; a sink may first decide
+    /// whether it draws anything at all.
+    #[inline(always)]
+    fn triangle(
+        &mut self,
+        face: usize,
+        normal: Vec3,
+        first_corner: usize,
+        vertices: [u32; 3],
+        p: &[Projected; 3],
+    ) {
+        let window: [ScreenVertex<N>; 3] =
+            std::array::from_fn(|k| p[k].vertex(self.corner(first_corner + k, vertices[k], false)));
+        self.polygon(face, normal, false, &window);
+    }
+
+    /// Starts loading what [`PolygonSink::corner`] reads of corner
+    /// `corner` (of vertex `vertex`), a few polygons ahead.
+    #[inline(always)]
+    fn prefetch_corner(&self, corner: usize, vertex: u32) {
+        let _ = (corner, vertex);
+    }
+}
+
+/// Working storage of the walk, reused from polygon to polygon.
+#[derive(Debug)]
+pub(crate) struct Scratch<const N: usize> {
+    input: Vec<ClipVertex<N>>,
+    clipped: Vec<ClipVertex<N>>,
+    spare: Vec<ClipVertex<N>>,
+    window: Vec<ScreenVertex<N>>,
+}
+
+impl<const N: usize> Default for Scratch<N> {
+    fn default() -> Self {
+        Scratch {
+            input: Vec::new(),
+            clipped: Vec::new(),
+            spare: Vec::new(),
+            window: Vec::new(),
+        }
+    }
+}
+
+/// What the walk reads of a frame.
+#[derive(Clone, Copy)]
+pub(crate) struct Assembly<'a> {
+    pub(crate) mesh: &'a Mesh,
+    /// One unit normal per polygon, `None` where its area is zero.
+    pub(crate) faces: &'a [Option<Vec3>],
+    /// The vertex stage's output, one per mesh position.
+    pub(crate) projected: &'a [Projected],
+    pub(crate) view: View,
+    pub(crate) cull_backfaces: bool,
+}
+
+impl Assembly<'_> {
+    /// Walks polygons `faces` in order into `sink`, counting in `stats`
+    /// the degenerate, invisible, culled and rasterized ones.
+    #[inline(always)]
+    pub(crate) fn walk<const N: usize, S: PolygonSink<N>>(
+        &self,
+        faces: Range<usize>,
+        scratch: &mut Scratch<N>,
+        sink: &mut S,
+        stats: &mut RenderStats,
+    ) {
+        let mesh = self.mesh;
+        let end = faces.end;
+        for face in faces {
+            if face + PREFETCH_AHEAD < end {
+                self.prefetch(face + PREFETCH_AHEAD, sink);
+            }
+            let Some(normal) = self.faces[face] else {
+                stats.degenerate += 1;
+                continue;
+            };
+            let range = mesh.corner_range(face);
+            if let &[i0, i1, i2] = &mesh.corners()[range.clone()] {
+                let p = [i0, i1, i2].map(|i| self.projected[i as usize]);
+                if p.iter().all(Projected::inside) {
+                    let (x, y) = (p.map(|p| i64::from(p.x)), p.map(|p| i64::from(p.y)));
+                    // As `signed_area_ccw`; snapped coordinates within ±2^29
+                    // keep it in i64.
+                    let area = (x[2] - x[0]) * (y[1] - y[0]) - (x[1] - x[0]) * (y[2] - y[0]);
+                    if area == 0 {
+                        stats.invisible += 1;
+                        continue;
+                    }
+                    if area > 0 {
+                        stats.rasterized += 1;
+                        sink.triangle(face, normal, range.start, [i0, i1, i2], &p);
+                        continue;
+                    }
+                    if self.cull_backfaces {
+                        stats.culled += 1;
+                        continue;
+                    }
+                    // A back face drawn: the general path.
+                }
+            }
+            self.polygon(face, normal, scratch, sink, stats);
+        }
+    }
+
+    /// Any polygon: clipped if needed, faced, culled or reversed. Kept out
+    /// of the walk's loop, which it would crowd: few polygons come here.
+    #[inline(never)]
+    fn polygon<const N: usize, S: PolygonSink<N>>(
+        &self,
+        face: usize,
+        normal: Vec3,
+        scratch: &mut Scratch<N>,
+        sink: &mut S,
+        stats: &mut RenderStats,
+    ) {
+        let corners = &self.mesh.corners()[self.mesh.corner_range(face)];
+        let unclipped = corners.iter().all(|&p| self.projected[p as usize].inside());
+        let area = if unclipped {
+            window_area(self.projected, corners)
+        } else {
+            self.project(face, false, scratch, sink);
+            if scratch.window.len() < 3 {
+                0
+            } else {
+                signed_area_ccw(&scratch.window)
+            }
+        };
+        if area == 0 {
+            stats.invisible += 1;
+            return;
+        }
+        let back = area < 0;
+        if back && self.cull_backfaces {
+            stats.culled += 1;
+            return;
+        }
+        if back || unclipped {
+            self.project(face, back, scratch, sink);
+        }
+        if back {
+            scratch.window.reverse();
+        }
+        stats.rasterized += 1;
+        sink.polygon(face, normal, back, &scratch.window);
+    }
+
+    /// The polygon's window-space vertices in `scratch.window`, clipped,
+    /// with the attributes of its front (or back) side.
+    fn project<const N: usize, S: PolygonSink<N>>(
+        &self,
+        face: usize,
+        back: bool,
+        scratch: &mut Scratch<N>,
+        sink: &mut S,
+    ) {
+        let mesh = self.mesh;
+        let range = mesh.corner_range(face);
+        let corners = &mesh.corners()[range.clone()];
+        scratch.window.clear();
+        if corners.iter().all(|&v| self.projected[v as usize].inside()) {
+            for (c, &v) in range.zip(corners) {
+                let attrs = sink.corner(c, v, back);
+                scratch
+                    .window
+                    .push(self.projected[v as usize].vertex(attrs));
+            }
+            return;
+        }
+        scratch.input.clear();
+        for (c, &v) in range.zip(corners) {
+            scratch.input.push(ClipVertex {
+                clip: self.view.clip(mesh.positions()[v as usize]),
+                attrs: sink.corner(c, v, back),
+            });
+        }
+        clip_polygon(
+            &scratch.input,
+            self.view.guard,
+            &mut scratch.clipped,
+            &mut scratch.spare,
+        );
+        let (width, height) = (self.view.width, self.view.height);
+        scratch
+            .window
+            .extend(scratch.clipped.iter().map(|v| to_window(v, width, height)));
+    }
+
+    /// Starts loading what walking polygon `face` reads at random: its
+    /// vertices' window positions and the sink's attribute sources. Where
+    /// [`prefetch`] is no instruction (WebAssembly), this does nothing: the
+    /// addresses' index loads and bounds checks would stay.
+    #[inline(always)]
+    fn prefetch<const N: usize, S: PolygonSink<N>>(&self, face: usize, sink: &S) {
+        if !cfg!(target_arch = "x86_64") {
+            return;
+        }
+        let range = self.mesh.corner_range(face);
+        if range.len() == 3 {
+            // Triangles, nearly all polygons: straight-line code, no loop to
+            // leave (its exit would be mispredicted every few polygons).
+            self.prefetch_corner(range.start, sink);
+            self.prefetch_corner(range.start + 1, sink);
+            self.prefetch_corner(range.start + 2, sink);
+            return;
+        }
+        for c in range {
+            self.prefetch_corner(c, sink);
+        }
+    }
+
+    /// [`Assembly::prefetch`] of one corner (a method, not a closure: a
+    /// closure here was not inlined, and its calls cost 8 % of a frame).
+    #[inline(always)]
+    fn prefetch_corner<const N: usize, S: PolygonSink<N>>(&self, corner: usize, sink: &S) {
+        let vertex = self.mesh.corners()[corner];
+        prefetch(&self.projected[vertex as usize]);
+        sink.prefetch_corner(corner, vertex);
+    }
+}
+
+/// Twice the signed area of a polygon's projected, snapped positions
+/// (as [`signed_area_ccw`] of its window polygon).
+pub(crate) fn window_area(projected: &[Projected], corners: &[u32]) -> i128 {
+    let n = corners.len();
+    let mut sum: i128 = 0;
+    for i in 0..n {
+        let a = &projected[corners[i] as usize];
+        let b = &projected[corners[(i + 1) % n] as usize];
+        sum += a.x as i128 * b.y as i128 - b.x as i128 * a.y as i128;
+    }
+    -sum
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::camera::Camera;
+    use crate::models::{builtin_model, BUILTIN_MODELS};
+    use crate::normals::face_normals;
+    use crate::raster::guard_band;
+
+    /// Records what it is given; a corner's attributes name it. The
+    /// default [`PolygonSink::triangle`].
+    #[derive(Default)]
+    struct Record(Vec<(usize, bool, Vec<ScreenVertex<3>>)>);
+
+    fn attrs(corner: usize, vertex: u32, back: bool) -> [f32; 3] {
+        [corner as f32, vertex as f32, f32::from(u8::from(back))]
+    }
+
+    impl PolygonSink<3> for Record {
+        fn corner(&mut self, corner: usize, vertex: u32, back: bool) -> [f32; 3] {
+            attrs(corner, vertex, back)
+        }
+
+        fn polygon(&mut self, face: usize, _: Vec3, back: bool, window: &[ScreenVertex<3>]) {
+            self.0.push((face, back, window.to_vec()));
+        }
+    }
+
+    /// [`Record`] with a triangle of its own, as the tiled setup has.
+    #[derive(Default)]
+    struct Triangles(Record);
+
+    impl PolygonSink<3> for Triangles {
+        fn corner(&mut self, corner: usize, vertex: u32, back: bool) -> [f32; 3] {
+            attrs(corner, vertex, back)
+        }
+
+        fn polygon(&mut self, face: usize, n: Vec3, back: bool, window: &[ScreenVertex<3>]) {
+            self.0.polygon(face, n, back, window);
+        }
+
+        fn triangle(
+            &mut self,
+            face: usize,
+            _: Vec3,
+            first_corner: usize,
+            vertices: [u32; 3],
+            p: &[Projected; 3],
+        ) {
+            let window = (0..3)
+                .map(|k| p[k].vertex(attrs(first_corner + k, vertices[k], false)))
+                .collect();
+            self.0 .0.push((face, false, window));
+        }
+    }
+
+    /// The walk, written the plain way: every polygon clipped, projected
+    /// and faced from its clipped window polygon.
+    fn reference(
+        mesh: &Mesh,
+        faces: &[Option<Vec3>],
+        view: &View,
+        cull: bool,
+    ) -> (Vec<(usize, bool, Vec<ScreenVertex<3>>)>, RenderStats) {
+        let mut stats = RenderStats::default();
+        let mut out = Vec::new();
+        let window = |face: usize, back: bool| {
+            let input: Vec<ClipVertex<3>> = mesh
+                .corner_range(face)
+                .map(|c| {
+                    let v = mesh.corners()[c];
+                    ClipVertex {
+                        clip: view.view_projection * mesh.positions()[v as usize].extend(1.0),
+                        attrs: attrs(c, v, back),
+                    }
+                })
+                .collect();
+            let (mut clipped, mut spare) = (Vec::new(), Vec::new());
+            clip_polygon(&input, view.guard, &mut clipped, &mut spare);
+            clipped
+                .iter()
+                .map(|v| to_window(v, view.width, view.height))
+                .collect::<Vec<_>>()
+        };
+        for (face, normal) in faces.iter().enumerate() {
+            if normal.is_none() {
+                stats.degenerate += 1;
+                continue;
+            }
+            let front = window(face, false);
+            let area = if front.len() < 3 {
+                0
+            } else {
+                signed_area_ccw(&front)
+            };
+            if area == 0 {
+                stats.invisible += 1;
+            } else if area > 0 {
+                stats.rasterized += 1;
+                out.push((face, false, front));
+            } else if cull {
+                stats.culled += 1;
+            } else {
+                stats.rasterized += 1;
+                let mut back = window(face, true);
+                back.reverse();
+                out.push((face, true, back));
+            }
+        }
+        (out, stats)
+    }
+
+    /// Every built-in model, framed and from inside its bounds (near-plane
+    /// and guard-band clipping), culling on and off: the walk hands over
+    /// exactly the polygons, facings and window vertices of the plain way,
+    /// and counts each polygon once.
+    #[test]
+    fn the_walk_gives_what_clipping_every_polygon_gives() {
+        let (width, height) = (96, 64);
+        let (mut clipped, mut backs) = (0, 0);
+        for info in BUILTIN_MODELS {
+            let mesh = builtin_model(info.name, None).unwrap();
+            let faces = face_normals(&mesh);
+            let (lo, hi) = mesh.bounds();
+            let centre = (lo + hi) * 0.5;
+            let radius = (hi - lo).length() * 0.5;
+            let framed = Camera::framing_sphere(centre, radius, 45.0, 1.5);
+            let inside = Camera {
+                eye: centre + Vec3::new(0.1, 0.2, 0.3) * radius,
+                near: 0.01 * radius,
+                ..framed
+            };
+            for camera in [framed, framed.orbit(70.0, 30.0), inside] {
+                let view = View {
+                    view_projection: camera.projection(1.5) * camera.view(),
+                    width,
+                    height,
+                    guard: guard_band(width, height),
+                };
+                let mut projected = vec![Projected::default(); mesh.positions().len()];
+                project_vertices(&view, mesh.positions(), &mut projected);
+                for cull in [true, false] {
+                    let assembly = Assembly {
+                        mesh: &mesh,
+                        faces: &faces,
+                        projected: &projected,
+                        view,
+                        cull_backfaces: cull,
+                    };
+                    let (want, want_stats) = reference(&mesh, &faces, &view, cull);
+                    let case = format!("{} {camera:?} cull {cull}", info.name);
+                    let all = 0..mesh.polygon_count();
+                    let mut stats = RenderStats::default();
+                    let mut record = Record::default();
+                    assembly.walk(
+                        all.clone(),
+                        &mut Scratch::default(),
+                        &mut record,
+                        &mut stats,
+                    );
+                    assert_eq!(stats, want_stats, "{case}");
+                    let mut triangles = Triangles::default();
+                    let mut again = RenderStats::default();
+                    assembly.walk(all, &mut Scratch::default(), &mut triangles, &mut again);
+                    assert_eq!(again, want_stats, "{case}");
+                    clipped += want
+                        .iter()
+                        .filter(|(face, _, w)| {
+                            w.len() != mesh.corner_range(*face).len()
+                                || w.iter().any(|v| v.attrs[0].fract() != 0.0)
+                        })
+                        .count();
+                    backs += want.iter().filter(|(_, back, _)| *back).count();
+                    for got in [record.0, triangles.0 .0] {
+                        assert_eq!(got.len(), want.len(), "{case}");
+                        for (got, want) in got.iter().zip(&want) {
+                            assert_eq!(got, want, "{case}");
+                        }
+                    }
+                    let counted = stats.degenerate + stats.invisible + stats.culled;
+                    assert_eq!(counted + stats.rasterized, mesh.polygon_count() as u64);
+                }
+            }
+        }
+        // The cases reach clipping and back faces drawn.
+        assert!(
+            clipped > 100 && backs > 100,
+            "{clipped} clipped, {backs} back faces"
+        );
+    }
+}
