@@ -18,7 +18,7 @@
 //!    Each triangle is copied, with its planes, into the bin of every band
 //!    it touches.
 //! 3. **Bands** (parallel): a band reads its chunks' bins in order (see
-//!    `band.rs`), then writes its rows of the image.
+//!    `band/`), then writes its rows of the image.
 //!
 //! What must hold, and why it is built this way:
 //!

@@ -44,7 +44,7 @@ pub(crate) struct Plane {
     pub dy: f32,
 }
 
-/// How a triangle's rows are walked (see `band.rs`).
+/// How a triangle's rows are walked (see `band/mod.rs`, `band/walk.rs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Walk {
     /// Every edge function stays within ±2^31 over the triangle's block-aligned

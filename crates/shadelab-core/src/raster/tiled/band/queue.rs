@@ -2,7 +2,8 @@
 //! passed the depth test packed into whole lanes, interpolated 8 at a time,
 //! queued, lit [`QUEUE_LIT`] at a time and written back in queue order (see `mod.rs`).
 
-use super::{interpolate, Band, Fill, Row, LIT_GROUPS, QUEUE_LIT};
+use super::walk::{interpolate, Fill, Row};
+use super::{Band, LIT_GROUPS, QUEUE_LIT};
 use crate::shade::{Shader, MAX_ATTRS};
 use crate::simd::{Simd, Vf, Vi};
 
