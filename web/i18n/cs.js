@@ -329,7 +329,7 @@ export default {
   'cost.evaluations': 'Vyhodnocení osvětlovacího modelu',
   'cost.per_polygon': 'jedno na polygon ({polygons})',
   'cost.per_vertex.tiled': 'jedno na normálu ve vrcholu celé sítě, vykreslené či ne: dlaždicový rasterizátor je osvětlí všechny před odstraněním odvrácených stěn (dvakrát, kreslí-li se i zadní stěny)',
-  'cost.per_vertex.scanline': 'jedno na normálu ve vrcholu celé sítě, vykreslené či ne: řádkový rasterizátor osvětlí rohy polygonu dřív, než rozhodne, zda ho odstraní (a ještě jednou, z druhé strany, pro každou zadní stěnu, kterou kreslí)',
+  'cost.per_vertex.scanline': 'jedno na normálu ve vrcholu kreslených polygonů: řádkový rasterizátor odstraní odvrácený polygon dřív, než osvětlí jeho rohy (předem se osvětlí jen polygon oříznutý okraji pohledu, protože jeho orientace se určí až po oříznutí), a každou zadní stěnu, kterou kreslí, osvětlí ještě jednou z druhé strany',
   'cost.per_pixel': 'jedno na vystínovaný pixel ({pixels})',
   'cost.evaluationRatio': 'V těchto snímcích Gouraud vyhodnotil model {gouraud}krát častěji než konstantní stínování, Phong {phong}krát častěji.',
   'cost.timeRatio': 'Podle těchto časů trval Gouraud {gouraud}krát déle než konstantní stínování, Phong {phong}krát déle.',

@@ -338,7 +338,7 @@ export default {
   'cost.evaluations': 'Lighting evaluations',
   'cost.per_polygon': 'once per polygon ({polygons})',
   'cost.per_vertex.tiled': 'once per vertex normal of the whole mesh, drawn or not: the tiled rasterizer lights them all before culling (twice with back faces drawn)',
-  'cost.per_vertex.scanline': 'once per vertex normal of the whole mesh, drawn or not: the scanline rasterizer lights a polygon’s corners before it decides whether to cull it (and again, facing the other way, for each back face it draws)',
+  'cost.per_vertex.scanline': 'once per vertex normal of the polygons it draws: the scanline rasterizer culls a polygon before lighting its corners (only a polygon the view’s edges cut is lit first, since it is faced after clipping), and lights each back face it draws again, facing the other way',
   'cost.per_pixel': 'once per pixel shaded ({pixels})',
   'cost.evaluationRatio': 'In these frames Gouraud evaluated the model {gouraud} times as often as flat, Phong {phong} times as often.',
   'cost.timeRatio': 'In these times Gouraud took {gouraud} times as long as flat, Phong {phong} times as long.',

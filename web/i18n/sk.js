@@ -329,7 +329,7 @@ export default {
   'cost.evaluations': 'Vyhodnotenia osvetľovacieho modelu',
   'cost.per_polygon': 'jedno na polygón ({polygons})',
   'cost.per_vertex.tiled': 'jedno na normálu vo vrchole celej siete, vykreslenej či nie: dlaždicový rasterizátor ich osvetlí všetky pred odstránením odvrátených stien (dvakrát, ak sa kreslia aj zadné steny)',
-  'cost.per_vertex.scanline': 'jedno na normálu vo vrchole celej siete, vykreslenej či nie: riadkový rasterizátor osvetlí rohy polygónu skôr, ako rozhodne, či ho odstráni (a ešte raz, z druhej strany, pre každú zadnú stenu, ktorú kreslí)',
+  'cost.per_vertex.scanline': 'jedno na normálu vo vrchole kreslených polygónov: riadkový rasterizátor odstráni odvrátený polygón skôr, ako osvetlí jeho rohy (vopred sa osvetlí len polygón orezaný okrajmi pohľadu, lebo jeho orientácia sa určí až po orezaní), a každú zadnú stenu, ktorú kreslí, osvetlí ešte raz z druhej strany',
   'cost.per_pixel': 'jedno na vytieňovaný pixel ({pixels})',
   'cost.evaluationRatio': 'V týchto snímkach Gouraud vyhodnotil model {gouraud}-krát častejšie ako konštantné tieňovanie, Phong {phong}-krát častejšie.',
   'cost.timeRatio': 'Podľa týchto časov trval Gouraud {gouraud}-krát dlhšie ako konštantné tieňovanie, Phong {phong}-krát dlhšie.',
