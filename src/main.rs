@@ -20,6 +20,7 @@ mod plot;
 mod profile;
 mod quad;
 mod server;
+mod site;
 mod view;
 
 use std::io::Write;

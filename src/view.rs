@@ -7,7 +7,8 @@ use std::path::Path;
 
 use anyhow::{bail, Context};
 
-use crate::server::{Server, Site};
+use crate::server::Server;
+use crate::site::Site;
 
 /// What `shadelab view` was asked to do.
 pub struct ViewRequest<'a> {

@@ -3,7 +3,7 @@
 // and helpers that open the viewer, wait for its frames and read its pixels.
 // A test file calls `useViewer()` once, at its top.
 import { before, after } from 'node:test';
-import { spawn } from 'node:child_process';
+import { spawn, execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -176,6 +176,17 @@ export async function panelPixels(page, method) {
     for (let i = 0; i < d.length; i += 0x8000) s += String.fromCharCode(...d.subarray(i, i + 0x8000));
     return btoa(s);
   }, method);
+}
+
+/** Runs the `shadelab` binary under test with `args`; its standard output. */
+export const shadelab = (...args) => execFileSync(BIN, args, { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
+
+/** A panel's RGBA pixels as a Buffer. */
+export const pixelsOf = async (page, method) => Buffer.from(await panelPixels(page, method), 'base64');
+
+/** Polls `condition` in the page until it holds (a loaded machine is slow, never wrong). */
+export async function until(page, condition, arg, timeout = 120000) {
+  await page.waitForFunction(condition, arg, { timeout, polling: 100 });
 }
 
 /** A PNG file's RGBA pixels decoded by the browser, with its size. */

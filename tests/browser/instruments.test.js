@@ -8,13 +8,12 @@
 // Run with the other browser tests: (cd tests/browser && npm ci && npm test)
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import {
-  useViewer, context, baseUrl, ROOT, BIN, ARTIFACTS, METHODS,
-  openViewer, settle, quiet, update, digests, statistics, panelPixels, decodePng,
+  useViewer, context, baseUrl, ROOT, ARTIFACTS, METHODS,
+  openViewer, settle, quiet, update, digests, statistics, decodePng, shadelab, pixelsOf,
 } from './harness.js';
 
 useViewer();
@@ -59,10 +58,6 @@ async function sceneFile(page, name, method) {
   return file;
 }
 
-const shadelab = (...args) => execFileSync(BIN, args, { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
-
-/** A panel's RGBA pixels as a Buffer. */
-const pixelsOf = async (page, method) => Buffer.from(await panelPixels(page, method), 'base64');
 
 test('clicking a pixel inspects it with the numbers `shadelab explain` prints', async () => {
   const { page, problems } = await openViewer('#model=sphere&detail=8&interpolation=screen&polygons=whole');

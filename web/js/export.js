@@ -75,6 +75,35 @@ export async function exportAnimation(state, panels, progress = () => {}) {
   return { frames: n, width: writer.width, height: writer.height, bytes: blob.size };
 }
 
+let saving = null;
+/**
+ * Saves one orbit of the page's three panels as an animated PNG
+ * ([`exportAnimation`]), with `button` disabled and the progress in the
+ * status line meanwhile; resolves to what was saved, or null (the error
+ * shown). A second call while saving resolves to the first one's result.
+ */
+export function saveAnimation(page, button) {
+  if (saving) return saving;
+  button.disabled = true;
+  saving = (async () => {
+    try {
+      const saved = await exportAnimation(page.state(), page.panels, (k, n) => page.setStatus(t('animation.progress', { k, n })));
+      page.setStatus(t('animation.saved', { frames: saved.frames, width: saved.width, height: saved.height }));
+      return saved;
+    } catch (error) {
+      page.setStatus('');
+      page.showMessage(t('error.animation', { message: error.message }));
+      return null;
+    } finally {
+      button.disabled = false;
+      saving = null;
+      // The workers drew the orbit: draw the panels as they were.
+      page.rerender();
+    }
+  })();
+  return saving;
+}
+
 export function exportScene(state, userFile) {
   const header = ['# shadelab scene, saved by the viewer.', '# `shadelab compare scene.toml -o three.png` draws the three panels; `shadelab render` one method (--shading).'];
   if (userFile && state.model === userFile.name) header.push(`# model.source names your file ${userFile.name}: keep it beside this scene file.`);

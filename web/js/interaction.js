@@ -3,6 +3,7 @@
 // what the instruments look at: a click picks a pixel, Alt+click a row,
 // Alt+drag a line. A press that moves less than a few pixels is a click; a
 // press on a light's marker drags that light; a double click resets the camera.
+// A file dropped on the panels is opened.
 import { ZOOM_MIN, ZOOM_MAX } from './state.js';
 
 const DEGREES_PER_PIXEL = 0.5;
@@ -211,4 +212,29 @@ export function attachInteraction(canvases, state, changed, dragMode, resetCamer
       e.preventDefault();
     });
   }
+}
+
+/** Opens a file dropped on `zone` with `open(file)`, showing the zone as a target while a file is dragged over it. */
+export function attachDrop(zone, open) {
+  let depth = 0;
+  zone.addEventListener('dragenter', (e) => {
+    if (![...e.dataTransfer.types].includes('Files')) return;
+    depth += 1;
+    zone.classList.add('dragging');
+    e.preventDefault();
+  });
+  zone.addEventListener('dragover', (e) => {
+    if ([...e.dataTransfer.types].includes('Files')) e.preventDefault();
+  });
+  zone.addEventListener('dragleave', () => {
+    depth = Math.max(0, depth - 1);
+    if (depth === 0) zone.classList.remove('dragging');
+  });
+  zone.addEventListener('drop', (e) => {
+    e.preventDefault();
+    depth = 0;
+    zone.classList.remove('dragging');
+    const file = e.dataTransfer.files[0];
+    if (file) open(file);
+  });
 }

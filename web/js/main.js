@@ -7,16 +7,17 @@
 // compute on demand, once the panels are still, so dragging stays fast.
 // Presenting (present.js) draws the panels larger; the quiz (quiz.js) gives
 // the panels scenes of its own for a while.
-import { t, lab, plural, translateDocument, setLanguage, negotiate, language, LANGUAGE_NAMES } from './i18n.js';
-import { Panel, PanelGroup, ImagePanel, paint } from './panels.js';
+import { t, lab, plural, translateDocument, setLanguage, negotiate, LANGUAGE_NAMES } from './i18n.js';
+import { Panel, PanelGroup, ImagePanel } from './panels.js';
 import { beforeNextPaint, holdPaintWorkWhile } from './dom.js';
 import { buildForm, lightSwatch } from './form.js';
 import { Side } from './side.js';
-import { attachInteraction } from './interaction.js';
-import { exportPng, exportScene, exportAnimation } from './export.js';
+import { attachInteraction, attachDrop } from './interaction.js';
+import { exportPng, exportScene, saveAnimation as saveOrbit } from './export.js';
 import { markerPositions, dragLight, RADIUS } from './lights.js';
 import { Present } from './present.js';
 import { Quiz } from './quiz.js';
+import { exposeForTests } from './testhooks.js';
 import { heatScale } from './tools/errors.js';
 import {
   METHODS, MAX_FILE_MIB, LANGUAGES,
@@ -370,30 +371,6 @@ function setModel(name, notify = true) {
   if (notify) changed();
 }
 
-function attachDrop(zone) {
-  let depth = 0;
-  zone.addEventListener('dragenter', (e) => {
-    if (![...e.dataTransfer.types].includes('Files')) return;
-    depth += 1;
-    zone.classList.add('dragging');
-    e.preventDefault();
-  });
-  zone.addEventListener('dragover', (e) => {
-    if ([...e.dataTransfer.types].includes('Files')) e.preventDefault();
-  });
-  zone.addEventListener('dragleave', () => {
-    depth = Math.max(0, depth - 1);
-    if (depth === 0) zone.classList.remove('dragging');
-  });
-  zone.addEventListener('drop', (e) => {
-    e.preventDefault();
-    depth = 0;
-    zone.classList.remove('dragging');
-    const file = e.dataTransfer.files[0];
-    if (file) openFile(file);
-  });
-}
-
 // ---- languages ----
 
 /** Loads the instruments' texts of `lang` from a panel's engine. */
@@ -466,6 +443,7 @@ const page = {
   openFile,
   resetCamera,
   setStatus,
+  showMessage,
   summaryText,
   sceneFor: (method) => sceneToml(state, method),
   setTab,
@@ -473,34 +451,12 @@ const page = {
   errorsShown,
 };
 
+/** Saves one orbit of the panels as an animated PNG (export.js). */
+const saveAnimation = () => saveOrbit(page, $('#export-animation'));
+
 function resetCamera() {
   state.camera = { ...defaultState().camera };
   changed();
-}
-
-let savingAnimation = null;
-/** Saves one orbit of the three panels as an animated PNG; resolves to what was saved. */
-function saveAnimation() {
-  if (savingAnimation) return savingAnimation;
-  const button = $('#export-animation');
-  button.disabled = true;
-  savingAnimation = (async () => {
-    try {
-      const saved = await exportAnimation(state, panels, (k, n) => setStatus(t('animation.progress', { k, n })));
-      setStatus(t('animation.saved', { frames: saved.frames, width: saved.width, height: saved.height }));
-      return saved;
-    } catch (error) {
-      setStatus('');
-      showMessage(t('error.animation', { message: error.message }));
-      return null;
-    } finally {
-      button.disabled = false;
-      savingAnimation = null;
-      // The workers drew the orbit: draw the panels as they were.
-      rerender();
-    }
-  })();
-  return savingAnimation;
 }
 
 // ---- start ----
@@ -564,7 +520,7 @@ async function start() {
   side = new Side($('#side'), page);
   side.build();
   attachInteraction([...panels, exactPanel].map((p) => p.canvas), state, changed, () => dragMode, resetCamera, picks, lightHandles);
-  attachDrop($('#panels'));
+  attachDrop($('#panels'), openFile);
   $('#message .message-close').addEventListener('click', clearMessage);
   $('#controls').addEventListener('submit', (e) => e.preventDefault());
   $('#export-png').addEventListener('click', () => exportPng(panels));
@@ -607,62 +563,22 @@ async function start() {
   });
   // `state` is replaced by applyLink only before the controls exist; from
   // here on it is the same object, changed in place.
-  if (globalThis.SHADELAB_TEST_HOOKS === true) exposeForTests();
+  if (globalThis.SHADELAB_TEST_HOOKS === true) {
+    exposeForTests(page, {
+      instrumentsBusy: () => instrumentsBusy,
+      side: () => side,
+      drawTogether(mode, parts = group.parts) {
+        together = mode;
+        group.parts = parts;
+        render();
+      },
+      panelScene: (method) => (quiz.on ? quiz.sceneFor(method) : sceneToml(shownState(), method)),
+      present: () => present,
+      quiz: () => quiz,
+      saveAnimation,
+    });
+  }
   render();
-}
-
-/**
- * The browser tests' handle on the page, `window.shadelab`: only when the
- * test sets `globalThis.SHADELAB_TEST_HOOKS = true` before the page's
- * scripts run (Playwright's `addInitScript`); a plain page exposes nothing.
- */
-function exposeForTests() {
-  window.shadelab = {
-    get state() { return state; },
-    get view() { return view; },
-    get language() { return language(); },
-    panels,
-    get exactPanel() { return exactPanel; },
-    sceneToml: (method) => sceneToml(state, method),
-    update(patch) {
-      patch(state);
-      changed();
-    },
-    idle: () => Promise.all(panels.map((p) => p.idle())),
-    /** Per panel, how often its engine parsed a file, adopted a mesh, prepared a model, read a scene, drew. */
-    counts: async () => Object.fromEntries(await Promise.all(panels.map(async (p) => [p.method, (await p.ask({ type: 'counts' })).counts]))),
-    /** Resolves once the panels are still and the open instrument has caught up. */
-    async instrumentsIdle() {
-      for (;;) {
-        await Promise.all(panels.map((p) => p.idle()));
-        await new Promise((r) => setTimeout(r, 120));
-        if (!instrumentsBusy && panels.every((p) => !p.busy && p.pending === null)) return;
-      }
-    },
-    get inspection() { return side.tools.inspector.answer; },
-    get profile() { return side.tools.profile.data; },
-    get quad() { return side.tools.quad.data; },
-    frameTimes: () => Object.fromEntries(panels.map((p) => [p.method, [...p.times]])),
-    /**
-     * Whether panels that share a scene are drawn in one request: `auto`
-     * (fewer than three cores), true or false; and, when given, by how many
-     * workers, each drawing a part of the rows.
-     */
-    drawTogether(mode, parts = group.parts) {
-      together = mode;
-      group.parts = parts;
-      render();
-    },
-    /** The scene each panel was last asked to draw. */
-    panelScene: (method) => (quiz.on ? quiz.sceneFor(method) : sceneToml(shownState(), method)),
-    get present() { return present; },
-    get quiz() { return quiz; },
-    saveAnimation,
-    setModel,
-    setTab,
-    openFile,
-    paint,
-  };
 }
 
 start();

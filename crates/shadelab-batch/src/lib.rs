@@ -11,6 +11,7 @@
 //! mesh becomes frames, shared with the Python package's `render`.
 #![warn(missing_docs)]
 
+mod config;
 mod index;
 mod manifest;
 mod plan;
@@ -18,6 +19,7 @@ mod prepared;
 mod progress;
 mod run;
 
+pub use config::{BatchConfig, Summary};
 pub use index::{IndexWriter, Row, Status};
 pub use manifest::{Entry, LineError, Manifest, ManifestFormat, MAX_LINE_BYTES};
 pub use plan::{
@@ -26,7 +28,7 @@ pub use plan::{
 };
 pub use prepared::PreparedMesh;
 pub use progress::Progress;
-pub use run::{is_complete_png, run, BatchConfig, Summary};
+pub use run::{is_complete_png, run};
 
 /// Why a run could not start or had to stop.
 #[derive(Debug, thiserror::Error)]

@@ -1,14 +1,17 @@
 //! Scene files: the full format, defaults, unknown keys, wrong types, and
 //! out-of-range values reported under the right key.
 
-use std::path::{Path, PathBuf};
+mod common;
 
+use std::path::Path;
+
+use common::*;
 use glam::Vec3;
 use shadelab_core::{
-    Interpolation, LightKind, Mesh, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8, Scene, Shading,
-    Specular, BUILTIN_MODELS,
+    Interpolation, LightKind, Polygons, Rasterizer, RenderOptions, Rgb, Rgb8, Shading, Specular,
+    BUILTIN_MODELS,
 };
-use shadelab_io::{load_obj, LightKindName, NormalsChoice, SceneError, SceneFile};
+use shadelab_io::{LightKindName, NormalsChoice, SceneError, SceneFile};
 
 const FULL: &str = r#"
 [model]
@@ -46,30 +49,6 @@ cull_backfaces = true
 gouraud_specular = false
 interpolation = "perspective"
 "#;
-
-/// A small tetrahedron away from the origin, with no normals.
-const TETRA: &str = "\
-v 10 0 0
-v 12 0 0
-v 10 2 0
-v 10 0 2
-f 1 3 2
-f 1 2 4
-f 1 4 3
-f 2 3 4
-";
-
-fn parse(text: &str) -> SceneFile {
-    SceneFile::parse(text, "test.toml").unwrap_or_else(|e| panic!("should parse: {e}"))
-}
-
-fn resolve(text: &str) -> Result<(Scene, RenderOptions), SceneError> {
-    parse(text).resolve(Path::new("."))
-}
-
-fn resolved(text: &str) -> (Scene, RenderOptions) {
-    resolve(text).unwrap_or_else(|e| panic!("should resolve: {e}"))
-}
 
 /// Asserts that `text` parses but fails to resolve with a value error on exactly `key`.
 fn assert_value_error(text: &str, key: &str) {
@@ -109,27 +88,6 @@ fn assert_parse_error(text: &str, needles: &[&str]) {
 
 fn close(a: Rgb, b: Rgb) -> bool {
     (a.r - b.r).abs() < 1e-6 && (a.g - b.g).abs() < 1e-6 && (a.b - b.b).abs() < 1e-6
-}
-
-/// Centre of the bounding box and the distance of the farthest vertex from it.
-fn centre_and_radius(mesh: &Mesh) -> (Vec3, f32) {
-    let (lo, hi) = mesh.bounds();
-    let centre = (lo + hi) * 0.5;
-    let radius = mesh
-        .corners()
-        .iter()
-        .map(|&i| (mesh.positions()[i as usize] - centre).length())
-        .fold(0.0f32, f32::max);
-    (centre, radius)
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    if let Some(parent) = path.parent() {
-        std::fs::create_dir_all(parent).unwrap();
-    }
-    std::fs::write(&path, text).unwrap();
-    path
 }
 
 // ---- the full example and the defaults ----
@@ -520,219 +478,4 @@ fn yaw_and_pitch_must_be_finite() {
     let d0 = (plain.camera.eye - plain.camera.target).length();
     let d1 = (turned.camera.eye - turned.camera.target).length();
     assert!((d0 - d1).abs() < 1e-4);
-}
-
-// ---- models from files ----
-
-#[test]
-fn relative_obj_path_is_resolved_against_the_scene_directory() {
-    let dir = tempfile::tempdir().unwrap();
-    let obj = write(dir.path(), "scenes/meshes/tetra.obj", TETRA);
-    let scene_path = write(
-        dir.path(),
-        "scenes/tetra.toml",
-        "[model]\nsource = \"meshes/tetra.obj\"\n[render]\nwidth = 8\nheight = 8\n",
-    );
-    let file = SceneFile::load(&scene_path).unwrap();
-    let base = scene_path.parent().unwrap();
-    let (scene, _) = file
-        .resolve(base)
-        .expect("resolved from the scene's directory");
-    let expected = load_obj(&obj).unwrap();
-    assert_eq!(scene.mesh.polygon_count(), expected.polygon_count());
-    assert_eq!(scene.mesh.corners(), expected.corners());
-
-    // From another directory the same relative path does not exist.
-    let err = file.resolve(dir.path()).expect_err("wrong base directory");
-    assert!(
-        matches!(err, SceneError::Model(shadelab_io::LoadError::Io { .. })),
-        "{err:?}"
-    );
-    assert!(err.to_string().contains("tetra.obj"), "{err}");
-
-    // An absolute path ignores the base directory.
-    let text = format!(
-        "[model]\nsource = {:?}\n[render]\nwidth = 8\nheight = 8\n",
-        obj.display().to_string()
-    );
-    let (scene, _) = parse(&text).resolve(Path::new("/nonexistent")).unwrap();
-    assert_eq!(scene.mesh.polygon_count(), 4);
-}
-
-#[test]
-fn unknown_model_name_lists_the_builtins() {
-    match resolve("[model]\nsource = \"dodecahedron\"\n") {
-        Err(SceneError::Value { key, message }) => {
-            assert_eq!(key, "model.source");
-            assert!(message.contains("dodecahedron"), "{message}");
-            for info in BUILTIN_MODELS {
-                assert!(message.contains(info.name), "{message} lacks {}", info.name);
-            }
-        }
-        other => panic!("expected model.source error, got {other:?}"),
-    }
-}
-
-#[test]
-fn missing_obj_file_is_a_model_error() {
-    let dir = tempfile::tempdir().unwrap();
-    let err = parse("[model]\nsource = \"absent.obj\"\n")
-        .resolve(dir.path())
-        .expect_err("missing");
-    assert!(matches!(err, SceneError::Model(_)), "{err:?}");
-    assert!(err.to_string().contains("absent.obj"), "{err}");
-}
-
-#[test]
-fn obj_errors_pass_through_with_their_line() {
-    let dir = tempfile::tempdir().unwrap();
-    write(
-        dir.path(),
-        "bad.obj",
-        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n",
-    );
-    let err = parse("[model]\nsource = \"bad.obj\"\n")
-        .resolve(dir.path())
-        .expect_err("bad index");
-    assert!(
-        matches!(
-            err,
-            SceneError::Model(shadelab_io::LoadError::Syntax { line: 4, .. })
-        ),
-        "{err:?}"
-    );
-    assert!(err.to_string().contains("bad.obj:4:"), "{err}");
-}
-
-#[test]
-fn detail_is_rejected_for_a_file() {
-    let dir = tempfile::tempdir().unwrap();
-    write(dir.path(), "tetra.obj", TETRA);
-    let err = parse("[model]\nsource = \"tetra.obj\"\ndetail = 3\n")
-        .resolve(dir.path())
-        .expect_err("detail for a file");
-    assert!(
-        matches!(&err, SceneError::Value { key, .. } if key == "model.detail"),
-        "{err:?}"
-    );
-}
-
-#[test]
-fn normals_file_for_an_obj() {
-    let dir = tempfile::tempdir().unwrap();
-    write(dir.path(), "plain.obj", TETRA);
-    write(
-        dir.path(),
-        "normals.obj",
-        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n",
-    );
-    let err = parse("[model]\nsource = \"plain.obj\"\nnormals = \"file\"\n")
-        .resolve(dir.path())
-        .expect_err("no normals in the file");
-    assert!(
-        matches!(&err, SceneError::Value { key, .. } if key == "model.normals"),
-        "{err:?}"
-    );
-    for choice in ["file", "auto"] {
-        let text = format!(
-            "[model]\nsource = \"normals.obj\"\nnormals = \"{choice}\"\n[render]\nwidth = 8\nheight = 8\n"
-        );
-        let (scene, _) = parse(&text).resolve(dir.path()).expect("file normals");
-        let per_corner: Vec<Vec3> = scene
-            .normals
-            .corner
-            .iter()
-            .map(|&i| scene.normals.normals[i as usize])
-            .collect();
-        assert_eq!(per_corner, vec![Vec3::Z; 3], "normals = {choice}");
-    }
-}
-
-#[test]
-fn with_a_camera_the_mesh_is_used_as_written() {
-    let dir = tempfile::tempdir().unwrap();
-    let obj = write(dir.path(), "tetra.obj", TETRA);
-    let text = "[model]\nsource = \"tetra.obj\"\n[camera]\neye = [11, 1, 10]\ntarget = [11, 0.5, 0.5]\n[render]\nwidth = 8\nheight = 8\n";
-    let (scene, _) = parse(text).resolve(dir.path()).unwrap();
-    let original = load_obj(&obj).unwrap();
-    assert_eq!(scene.mesh.positions(), original.positions());
-    assert_eq!(scene.mesh.corners(), original.corners());
-    assert_eq!(scene.camera.eye, Vec3::new(11.0, 1.0, 10.0));
-}
-
-#[test]
-fn without_a_camera_the_mesh_is_normalised() {
-    let dir = tempfile::tempdir().unwrap();
-    let obj = write(dir.path(), "tetra.obj", TETRA);
-    let text = "[model]\nsource = \"tetra.obj\"\n[render]\nwidth = 8\nheight = 8\n";
-    let (scene, _) = parse(text).resolve(dir.path()).unwrap();
-    let original = load_obj(&obj).unwrap();
-    assert_ne!(scene.mesh.positions(), original.positions());
-    assert_eq!(scene.mesh.corners(), original.corners());
-    let (centre, radius) = centre_and_radius(&scene.mesh);
-    assert!(centre.length() < 1e-5, "bbox centre {centre}");
-    assert!((radius - 1.0).abs() < 1e-5, "radius {radius}");
-    // Normalising is a translation and a uniform scale: shapes are kept.
-    let (lo, hi) = original.bounds();
-    let (c0, r0) = ((lo + hi) * 0.5, centre_and_radius(&original).1);
-    for (p, q) in scene.mesh.positions().iter().zip(original.positions()) {
-        assert!((*p - (*q - c0) / r0).length() < 1e-5);
-    }
-    // The framing camera looks at the origin from +z.
-    assert_eq!(scene.camera.target, Vec3::ZERO);
-    assert!(scene.camera.eye.z > 1.0);
-}
-
-#[test]
-fn specular_term_by_name() {
-    for (text, want) in [
-        ("phong", Specular::Phong),
-        ("blinn-phong", Specular::BlinnPhong),
-    ] {
-        let (_, options) = resolved(&format!("[render]\nspecular = \"{text}\"\n"));
-        assert_eq!(options.specular, want);
-    }
-    let err = SceneFile::parse("[render]\nspecular = \"blinn\"\n", "s.toml").unwrap_err();
-    assert!(err.to_string().contains("specular"), "{err}");
-}
-
-/// The default material does not clip outside the specular highlight: with
-/// every built-in model, under the default camera and lights, by every
-/// method, no channel reaches 255 once the specular term is off, and the
-/// highlight alone reaches it when it is on (issue: a red that clipped over a
-/// large area hid the methods' differences).
-#[test]
-fn the_default_material_clips_only_in_the_highlight() {
-    for model in shadelab_core::BUILTIN_MODELS {
-        for shading in ["flat", "gouraud", "phong"] {
-            let base = format!(
-                "[model]\nsource = \"{}\"\n[render]\nwidth = 96\nheight = 96\nshading = \"{shading}\"\n",
-                model.name
-            );
-            let (scene, options) = resolved(&format!("{base}[material]\nks = [0, 0, 0]\n"));
-            let image = shadelab_core::render(&scene, &options).unwrap().0;
-            let brightest = image
-                .pixels()
-                .iter()
-                .map(|p| p.0.into_iter().max().unwrap())
-                .max()
-                .unwrap();
-            assert!(
-                brightest < 255,
-                "{} {shading}: a channel clips without the specular term",
-                model.name
-            );
-            assert!(
-                brightest > 100,
-                "{} {shading}: the lit side is drawn ({brightest})",
-                model.name
-            );
-        }
-    }
-    // With the default specular term, Phong's highlight does reach white on the sphere.
-    let (scene, options) = resolved(
-        "[model]\nsource = \"sphere\"\n[render]\nwidth = 96\nheight = 96\nshading = \"phong\"\n",
-    );
-    let image = shadelab_core::render(&scene, &options).unwrap().0;
-    assert!(image.pixels().iter().any(|p| p.0[1] >= 250));
 }

@@ -177,7 +177,7 @@ pub extern "C" fn shadelab_render() -> u32 {
 pub extern "C" fn shadelab_render_methods() -> u32 {
     #[derive(Serialize)]
     struct Frames {
-        frames: [crate::engine::FrameInfo; 3],
+        frames: [crate::replies::FrameInfo; 3],
     }
     with(|i| {
         let answer = match std::str::from_utf8(&i.input) {
@@ -199,7 +199,7 @@ pub extern "C" fn shadelab_render_methods() -> u32 {
 pub extern "C" fn shadelab_render_methods_part(part: u32, parts: u32) -> u32 {
     #[derive(Serialize)]
     struct Part {
-        frames: [crate::engine::FrameInfo; 3],
+        frames: [crate::replies::FrameInfo; 3],
         rows: [u32; 2],
     }
     with(|i| {

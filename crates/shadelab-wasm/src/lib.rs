@@ -40,14 +40,13 @@ pub mod abi;
 mod camera_patch;
 mod engine;
 mod instruments;
+mod replies;
 mod shared_mesh;
 
-pub use engine::{
-    Engine, EngineCounts, EngineError, Evaluations, FileSummary, FrameInfo, ModelEntry,
-    MAX_FILE_BYTES,
-};
+pub use engine::{Engine, EngineError, MAX_FILE_BYTES};
 pub use instruments::{
     CurveAnswer, ErrorsAnswer, ErrorsRequest, HeatAnswer, HeatRequest, ImageInfo, InspectAnswer,
     InspectRequest, KeptErrors, MethodAnswer, OverlaysRequest, ProfileAnswer, ProfileRequest,
     QuadAnswer, QuadRequest, TextsRequest, MAX_QUAD_SIZE,
 };
+pub use replies::{EngineCounts, Evaluations, FileSummary, FrameInfo, ModelEntry};

@@ -3,6 +3,15 @@
 //! the formats' specifications.
 #![allow(dead_code)]
 
+mod fixtures;
+mod scenes;
+
+// Each test binary uses some of these.
+#[allow(unused_imports)]
+pub use fixtures::*;
+#[allow(unused_imports)]
+pub use scenes::*;
+
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 

@@ -6,7 +6,7 @@
 //! PNG decoders) to load textures shadelab never uses. So
 //! [`gltf::Gltf::from_slice`](::gltf::Gltf::from_slice) parses and validates
 //! the document (JSON or GLB, told by the `glTF` magic, not by extension),
-//! and this module loads the buffers itself: the GLB `BIN` chunk,
+//! and `buffers.rs` loads the buffers itself: the GLB `BIN` chunk,
 //! `data:…;base64,` URIs (decoded with the `base64` crate), and relative
 //! file URIs (percent-decoded, all files together within
 //! [`crate::MAX_MESH_BYTES`]). A file URI must name a regular file inside
@@ -48,19 +48,22 @@
 //! and only then is it validated.
 
 use std::collections::HashSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use ::gltf::accessor::{DataType, Dimensions};
-use ::gltf::buffer::Source;
 use ::gltf::mesh::{Mode, Semantic};
-use base64::Engine;
 use glam::{Mat3, Mat4, Vec3};
 use shadelab_core::limits::{mesh_memory, MAX_MEMORY_BYTES};
-use shadelab_core::{escape_token, CornerNormals, Mesh};
+use shadelab_core::{CornerNormals, Mesh};
 
-use crate::input::{read_capped, resolve_inside, Refusal};
+use crate::input::read_capped;
 use crate::mesh_file::{invalid, mesh_error, MAX_MESH_BYTES};
 use crate::LoadError;
+
+mod buffers;
+
+pub(crate) use buffers::external_buffers;
+use buffers::{check_images, load_buffers};
 
 /// Reads a glTF 2.0 file, `.gltf` or `.glb`; external buffers are read
 /// from the file's directory.
@@ -256,30 +259,6 @@ fn claimed(accessor: &::gltf::Accessor) -> u64 {
         0
     };
     (accessor.count() as u64).min(fits)
-}
-
-/// Fails when an image names a file outside the model's folder. Images are
-/// never read (textures are not drawn), but a file that names one is held
-/// to the same rule as its buffers.
-fn check_images(gltf: &::gltf::Gltf, name: &str, base_dir: Option<&Path>) -> Result<(), LoadError> {
-    for image in gltf.images() {
-        let ::gltf::image::Source::Uri { uri, .. } = image.source() else {
-            continue;
-        };
-        if uri.starts_with("data:") {
-            continue;
-        }
-        match resolve_uri(uri, base_dir) {
-            Ok(_) | Err(UriError::Refused(Refusal::Missing)) | Err(UriError::NoFolder) => {}
-            Err(e) => {
-                return Err(invalid(
-                    name,
-                    format!("image {}: {}", image.index(), e.describe(uri)),
-                ));
-            }
-        }
-    }
-    Ok(())
 }
 
 /// The triangles gathered so far.
@@ -491,138 +470,4 @@ fn check_accessor(
         ));
     }
     Ok(())
-}
-
-/// Every buffer's bytes, in order.
-fn load_buffers(
-    gltf: &::gltf::Gltf,
-    name: &str,
-    base_dir: Option<&Path>,
-    mut budget: u64,
-) -> Result<Vec<Vec<u8>>, LoadError> {
-    let mut buffers = Vec::new();
-    for buffer in gltf.buffers() {
-        let k = buffer.index();
-        let (data, what) = match buffer.source() {
-            Source::Bin => {
-                let blob = gltf.blob.as_deref().ok_or_else(|| {
-                    invalid(
-                        name,
-                        format!("buffer {k} refers to the GLB binary chunk, but there is none"),
-                    )
-                })?;
-                (blob.to_vec(), "the GLB binary chunk".to_owned())
-            }
-            Source::Uri(uri) if uri.starts_with("data:") => {
-                let (_, payload) = uri.split_once(";base64,").ok_or_else(|| {
-                    invalid(
-                        name,
-                        format!("buffer {k}: a data URI must be base64 (`;base64,`)"),
-                    )
-                })?;
-                let data = base64::engine::general_purpose::STANDARD
-                    .decode(payload)
-                    .map_err(|e| invalid(name, format!("buffer {k}: bad base64 data URI: {e}")))?;
-                (data, "its data URI".to_owned())
-            }
-            Source::Uri(uri) => {
-                let path = resolve_uri(uri, base_dir)
-                    .map_err(|e| invalid(name, format!("buffer {k}: {}", e.describe(uri))))?;
-                let data = read_capped(&path, budget)
-                    .map_err(|e| invalid(name, format!("buffer {k}: {e}")))?;
-                (data, format!("file {}", path.display()))
-            }
-        };
-        budget = budget.saturating_sub(data.len() as u64);
-        if data.len() < buffer.length() {
-            return Err(invalid(
-                name,
-                format!(
-                    "buffer {k}: byteLength is {} but {what} has only {} bytes",
-                    buffer.length(),
-                    data.len()
-                ),
-            ));
-        }
-        buffers.push(data);
-    }
-    Ok(buffers)
-}
-
-/// The files a glTF file's buffers name (not its data URIs) inside its
-/// folder; none when it cannot be read or parsed.
-pub(crate) fn external_buffers(path: &Path, base: &Path) -> Vec<PathBuf> {
-    let Ok(bytes) = read_capped(path, MAX_MESH_BYTES) else {
-        return Vec::new();
-    };
-    let Ok(gltf) = ::gltf::Gltf::from_slice_without_validation(&bytes) else {
-        return Vec::new();
-    };
-    gltf.document
-        .as_json()
-        .buffers
-        .iter()
-        .filter_map(|buffer| buffer.uri.as_deref())
-        .filter(|uri| !uri.starts_with("data:"))
-        .filter_map(|uri| resolve_uri(uri, Some(base)).ok())
-        .collect()
-}
-
-/// Why a URI does not name a file that may be read.
-enum UriError {
-    /// The file was not read from disk (the viewer's uploads).
-    NoFolder,
-    /// Not a relative file reference (`http:`, `file:`, a drive).
-    Scheme,
-    /// Malformed `%` escapes, or not UTF-8 once decoded.
-    Encoding,
-    /// Refused by [`resolve_inside`].
-    Refused(Refusal),
-}
-
-impl UriError {
-    fn describe(&self, uri: &str) -> String {
-        let shown = escape_token(uri);
-        match self {
-            UriError::NoFolder => format!(
-                "`{shown}` names an external file, which cannot be read here (only a .glb or \
-                 data: URIs)"
-            ),
-            UriError::Scheme => {
-                format!("`{shown}`: only relative file URIs and base64 data: URIs are read")
-            }
-            UriError::Encoding => format!("`{shown}`: malformed percent-encoding"),
-            UriError::Refused(r) => r.describe(uri),
-        }
-    }
-}
-
-/// The file a URI names, percent-decoded, inside `base_dir`.
-fn resolve_uri(uri: &str, base_dir: Option<&Path>) -> Result<PathBuf, UriError> {
-    let base = base_dir.ok_or(UriError::NoFolder)?;
-    if uri.contains(':') {
-        return Err(UriError::Scheme);
-    }
-    let decoded = percent_decode(uri).ok_or(UriError::Encoding)?;
-    if decoded.contains(':') || decoded.contains('\0') {
-        return Err(UriError::Scheme);
-    }
-    resolve_inside(base, &decoded).map_err(UriError::Refused)
-}
-
-fn percent_decode(s: &str) -> Option<String> {
-    let bytes = s.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut k = 0;
-    while k < bytes.len() {
-        if bytes[k] == b'%' {
-            let hex = std::str::from_utf8(bytes.get(k + 1..k + 3)?).ok()?;
-            out.push(u8::from_str_radix(hex, 16).ok()?);
-            k += 3;
-        } else {
-            out.push(bytes[k]);
-            k += 1;
-        }
-    }
-    String::from_utf8(out).ok()
 }
