@@ -8,7 +8,7 @@
 //! behind it, so a path with `..`, a backslash, a percent-escape or
 //! anything not in the table is simply not found.
 
-mod site {
+mod embedded {
     include!(concat!(env!("OUT_DIR"), "/site.rs"));
 }
 
@@ -57,16 +57,16 @@ impl Site {
     /// # Errors
     /// [`MissingWasm`] when the module could not be built with the binary.
     pub fn embedded() -> Result<Site, MissingWasm> {
-        if site::WASM.is_empty() {
-            let reason = if site::WASM_ERROR.is_empty() {
+        if embedded::WASM.is_empty() {
+            let reason = if embedded::WASM_ERROR.is_empty() {
                 "the module is empty"
             } else {
-                site::WASM_ERROR
+                embedded::WASM_ERROR
             };
             return Err(MissingWasm(reason));
         }
-        let mut files = site::WEB_FILES.to_vec();
-        files.push((WASM_PATH, site::WASM));
+        let mut files = embedded::WEB_FILES.to_vec();
+        files.push((WASM_PATH, embedded::WASM));
         files.push((PARAMS_PATH, params_json()));
         Ok(Site { files })
     }

@@ -3,8 +3,6 @@
 
 mod common;
 
-use std::path::Path;
-
 use common::*;
 use glam::Vec3;
 use shadelab_core::Mesh;

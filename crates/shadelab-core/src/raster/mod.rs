@@ -21,6 +21,13 @@ use crate::shade::Lighting;
 /// What the frame asks of a rasterizer, given a checked scene and the
 /// frame's lighting: both rasterizers implement it, and the frame
 /// (`frame.rs`) knows no more of them.
+///
+/// Inside, each rasterizer runs polygon assembly
+/// ([`assemble::Assembly::walk`]) over the mesh's polygons and receives the
+/// visible ones, clipped, in window space, with their attributes, through
+/// its own [`assemble::PolygonSink`]: the tiled rasterizer one sink per
+/// chunk of polygons, walked in parallel (its setup and binning), the
+/// scanline rasterizer one per frame (its fill).
 pub(crate) trait Rasterize {
     /// Draws `scene` into `image` (already of the options' size).
     fn render(

@@ -25,7 +25,10 @@
 //! compiler gets 32 vector registers instead of 16 (the inner loops spilled
 //! plane values to the stack), mask registers for compares and blends, and
 //! three-operand logic. The intrinsics are the same, so the results are
-//! bit for bit those of [`SimdLevel::Avx2`] (a test checks it).
+//! bit for bit those of [`SimdLevel::Avx2`] (a test checks it). The tiled
+//! rasterizer uses that build for Phong's pixels only: its flat and
+//! Gouraud blocks and its per-vertex and per-triangle work run the AVX2
+//! build, which was faster there (`SimdLevel::geometry`, `band_pass`).
 //!
 //! All backends compute in IEEE single precision; the x86 ones differ from
 //! the portable one in the last bits only, where AVX2 fuses
@@ -79,6 +82,20 @@ impl SimdLevel {
         SimdLevel::ALL
             .into_iter()
             .filter(|level| level.is_supported())
+    }
+
+    /// The level for per-vertex and per-triangle work (vertex lighting,
+    /// setup and binning, flat's polygon lighting): AVX-512's build where
+    /// it is chosen only for Phong's pixels. On an Intel Xeon with AVX-512
+    /// the geometry compiled for it made the bunny's and the dragon's
+    /// Gouraud and Phong frames up to 5 % slower than the AVX2 build, while
+    /// Phong's fill was 7–9 % faster (BENCHMARKS.md, "AVX-512 for Phong's
+    /// pixels only").
+    pub(crate) fn geometry(self) -> SimdLevel {
+        match self {
+            SimdLevel::Avx512 => SimdLevel::Avx2,
+            level => level,
+        }
     }
 
     /// Whether this CPU can run this level.

@@ -457,7 +457,8 @@ impl TiledRasterizer {
                 .for_each(|(out, points)| project_vertices(&view, points, out));
         };
         let (vertices, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
-        let (phong, simd) = (&self.phong, self.simd);
+        // Vertex lighting, like setup, runs the AVX2 build where AVX-512 is chosen.
+        let (phong, simd) = (&self.phong, self.simd.geometry());
         let light = || match method {
             Some(Shading::Gouraud) | None => {
                 light_vertices(vertices, lit, lit_back, phong, simd, scene, options)
@@ -486,7 +487,7 @@ impl TiledRasterizer {
             method,
             corner_vertex: &self.vertices.corner_vertex,
             phong: &self.phong,
-            simd: self.simd,
+            simd: self.simd.geometry(),
             lit: &self.lit,
             lit_back: &self.lit_back,
             bands,
