@@ -134,6 +134,9 @@ impl Frame<'_> {
         if A >= 6 {
             let normals = &self.scene.normals;
             prefetch(&normals.normals[normals.corner[corner] as usize]);
+        }
+        // Phong's attributes and flat's centroid read the position.
+        if A == 0 || A >= 6 {
             prefetch(&self.scene.mesh.positions()[vertex as usize]);
         }
     }
