@@ -28,7 +28,7 @@
 //! bit for bit those of [`SimdLevel::Avx2`] (a test checks it). The tiled
 //! rasterizer uses that build for Phong's pixels only: its flat and
 //! Gouraud blocks and its per-vertex and per-triangle work run the AVX2
-//! build, which was faster there (`SimdLevel::geometry`, `band_pass`).
+//! build, which was faster there (`SimdLevel::without_avx512`).
 //!
 //! All backends compute in IEEE single precision; the x86 ones differ from
 //! the portable one in the last bits only, where AVX2 fuses
@@ -84,14 +84,16 @@ impl SimdLevel {
             .filter(|level| level.is_supported())
     }
 
-    /// The level for per-vertex and per-triangle work (vertex lighting,
-    /// setup and binning, flat's polygon lighting): AVX-512's build where
-    /// it is chosen only for Phong's pixels. On an Intel Xeon with AVX-512
-    /// the geometry compiled for it made the bunny's and the dragon's
-    /// Gouraud and Phong frames up to 5 % slower than the AVX2 build, while
-    /// Phong's fill was 7–9 % faster (BENCHMARKS.md, "AVX-512 for Phong's
-    /// pixels only").
-    pub(crate) fn geometry(self) -> SimdLevel {
+    /// This level with the AVX-512 build replaced by the AVX2 one (the same
+    /// bytes), for work that AVX-512 made slower. The tiled rasterizer keeps
+    /// AVX-512 for Phong's pixels only: its flat and Gouraud blocks
+    /// (`band_pass`) and its per-vertex and per-triangle work (vertex
+    /// lighting, setup and binning, flat's polygon lighting) run the AVX2
+    /// build. On an Intel Xeon with AVX-512 the geometry compiled for it made
+    /// the bunny's and the dragon's Gouraud and Phong frames up to 5 % slower,
+    /// while Phong's fill was 7–9 % faster (BENCHMARKS.md, "AVX-512 for
+    /// Phong's pixels only").
+    pub(crate) fn without_avx512(self) -> SimdLevel {
         match self {
             SimdLevel::Avx512 => SimdLevel::Avx2,
             level => level,

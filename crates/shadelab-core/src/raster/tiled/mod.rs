@@ -241,9 +241,10 @@ fn band_pass<S: Shader>(
     // was 7–13 % slower on a full-screen quad; Phong's lighting keeps more
     // values in AVX-512's 32 registers and was up to 8 % faster (bunny,
     // 1920×1080, one thread). Both give the same bytes.
-    let simd = match simd {
-        SimdLevel::Avx512 if !S::DEFERRED => SimdLevel::Avx2,
-        level => level,
+    let simd = if S::DEFERRED {
+        simd
+    } else {
+        simd.without_avx512()
     };
     dispatch(simd, kernel);
 }
@@ -458,7 +459,7 @@ impl TiledRasterizer {
         };
         let (vertices, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
         // Vertex lighting, like setup, runs the AVX2 build where AVX-512 is chosen.
-        let (phong, simd) = (&self.phong, self.simd.geometry());
+        let (phong, simd) = (&self.phong, self.simd.without_avx512());
         let light = || match method {
             Some(Shading::Gouraud) | None => {
                 light_vertices(vertices, lit, lit_back, phong, simd, scene, options)
@@ -487,7 +488,7 @@ impl TiledRasterizer {
             method,
             corner_vertex: &self.vertices.corner_vertex,
             phong: &self.phong,
-            simd: self.simd.geometry(),
+            simd: self.simd.without_avx512(),
             lit: &self.lit,
             lit_back: &self.lit_back,
             bands,
