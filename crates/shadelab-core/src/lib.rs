@@ -33,6 +33,7 @@ pub use camera::{Camera, CameraError};
 pub use choice::{Choice, UnknownChoice};
 pub use clip::{clip_polygon, ClipVertex};
 pub use color::{Rgb, Rgb8};
+pub use frame::to_window;
 pub use frame::{coverage, draws_in_parts, part_rows, render, Renderer, ROW_ALIGN};
 pub use image::Image;
 pub use light::{Light, LightKind, LightKindName, Material, Specular, NO_ATTENUATION};
@@ -48,7 +49,6 @@ pub use probe::{
     depth_buffer, probe, EdgeRecord, FragmentRecord, ProbeRequest, SpanRecord, SteppedRecord,
     VertexRecord,
 };
-pub use raster::to_window;
 pub use raster::Interpolation;
 pub use scene::{Polygons, Rasterizer, RenderError, RenderOptions, RenderStats, Scene, Shading};
 pub use shade::{LightTerm, Lighting, LightingTerms, Terms};

@@ -11,10 +11,10 @@
 //! was drawn; teaching instruments build their explanations on it.
 
 use crate::color::{Rgb, Rgb8};
-use crate::frame::{lighting, validate};
+use crate::frame::{lighting, validate, Geometry};
 use crate::raster::scanline::{draw, Target};
 use crate::raster::scanline::{SpanTrace, Varyings};
-use crate::raster::{Interpolation, SUBPIXEL_ONE};
+use crate::raster::{Interpolation, VertexStage, SUBPIXEL_ONE};
 use crate::scene::{Rasterizer, RenderError, RenderOptions, Scene, Shading};
 
 /// Which pixels to watch.
@@ -288,7 +288,10 @@ pub fn probe(
         }
         slot_of_request[k] = Some(target.depth.len() - 1);
     }
-    draw(scene, &options, &lighting(scene, &options), &mut target);
+    let mut geometry = Geometry::default();
+    let mut frame = geometry.frame(scene, &options);
+    let lighting = lighting(scene, &options);
+    draw(&frame.project(), scene, &options, &lighting, &mut target);
     Ok(slot_of_request
         .into_iter()
         .map(|s| s.and_then(|s| target.records[s].clone()))
@@ -329,6 +332,9 @@ pub fn depth_buffer(scene: &Scene, options: &RenderOptions) -> Result<Vec<f32>, 
         width: options.width,
         depth: vec![1.0; options.width as usize * options.height as usize],
     };
-    draw(scene, &options, &lighting(scene, &options), &mut target);
+    let mut geometry = Geometry::default();
+    let mut frame = geometry.frame(scene, &options);
+    let lighting = lighting(scene, &options);
+    draw(&frame.project(), scene, &options, &lighting, &mut target);
     Ok(target.depth)
 }

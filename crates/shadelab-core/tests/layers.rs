@@ -10,7 +10,9 @@
 //!
 //! This test reads every source file of the crate and checks each
 //! `crate::module` it names in code against the table, so a cycle cannot
-//! come back unnoticed. A new module must be given its layer here.
+//! come back unnoticed. A new module must be given its layer here. A
+//! second test keeps the window transform and clipping in the frame: the
+//! rasterizers receive polygons already clipped and in window space.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -132,6 +134,63 @@ fn modules_depend_only_on_layers_below_or_their_own() {
         "uses against the layers:\n{}",
         wrong.join("\n")
     );
+}
+
+/// The code lines (not comments) of the source files under `src/dir`, with
+/// their file and line number.
+fn code_lines(dir: &str) -> Vec<(String, usize, String)> {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    sources(&src.join(dir), &mut files);
+    files.sort();
+    let mut out = Vec::new();
+    for file in &files {
+        let name = file.strip_prefix(&src).unwrap().display().to_string();
+        for (number, line) in fs::read_to_string(file).unwrap().lines().enumerate() {
+            if !line.trim_start().starts_with("//") {
+                out.push((name.clone(), number + 1, line.to_string()));
+            }
+        }
+    }
+    out
+}
+
+/// What only the frame does to a frame's positions and polygons.
+const FRAME_ONLY: [&str; 6] = [
+    "clip_polygon(",
+    "is_inside(",
+    "to_window(",
+    "project_vertices(",
+    "guard_band(",
+    ".projection(",
+];
+
+#[test]
+fn the_window_transform_and_clipping_are_the_frames_alone() {
+    let raster = code_lines("raster");
+    assert!(
+        raster.len() > 1000,
+        "only {} lines under src/raster",
+        raster.len()
+    );
+    let wrong: Vec<String> = raster
+        .iter()
+        .filter(|(_, _, line)| FRAME_ONLY.iter().any(|call| line.contains(call)))
+        .map(|(file, number, line)| format!("{file}:{number}: {}", line.trim()))
+        .collect();
+    assert!(
+        wrong.is_empty(),
+        "the raster layer transforms or clips (the frame's job, frame/):\n{}",
+        wrong.join("\n")
+    );
+    // And the frame does each of them.
+    let frame = code_lines("frame");
+    for call in FRAME_ONLY {
+        assert!(
+            frame.iter().any(|(_, _, line)| line.contains(call)),
+            "`{call}` not found under src/frame: is the scan broken?"
+        );
+    }
 }
 
 #[test]

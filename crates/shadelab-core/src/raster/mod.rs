@@ -1,37 +1,41 @@
 //! What every rasterizer shares: window-space vertices in fixed point,
-//! polygon assembly (`assemble.rs`, the front end handing both rasterizers
-//! their clipped window-space polygons), the fragment output interface and
-//! the interpolation modes.
+//! what it receives from the frame (`polygons.rs`: the frame's polygons,
+//! clipped and in window space, handed to its `PolygonSink`), the
+//! fragment output interface, fans and the interpolation modes.
 //!
 //! Window coordinates are snapped to 1/256 pixel ([`SUBPIXEL_BITS`] = 8) once,
 //! by [`snap`]; coverage is then decided in exact integer arithmetic, so two
 //! rasterizers fed the same vertices agree on every pixel.
 
-pub(crate) mod assemble;
+mod polygons;
 pub mod scanline;
 pub(crate) mod tiled;
 
+pub(crate) use self::polygons::{PolygonSink, PolygonSource, Projected, Scratch, VertexStage};
 pub use crate::scene::Interpolation;
 
-use crate::clip::ClipVertex;
 use crate::image::Image;
 use crate::scene::{RenderOptions, RenderStats, Scene};
 use crate::shade::Lighting;
 
-/// What the frame asks of a rasterizer, given a checked scene and the
-/// frame's lighting: both rasterizers implement it, and the frame
-/// (`frame.rs`) knows no more of them.
+/// What the frame asks of a rasterizer, given a checked scene, the frame's
+/// lighting and its polygons: both rasterizers implement it, and the frame
+/// (`frame/mod.rs`) knows no more of them.
 ///
-/// Inside, each rasterizer runs polygon assembly
-/// ([`assemble::Assembly::walk`]) over the mesh's polygons and receives the
-/// visible ones, clipped, in window space, with their attributes, through
-/// its own [`assemble::PolygonSink`]: the tiled rasterizer one sink per
-/// chunk of polygons, walked in parallel (its setup and binning), the
-/// scanline rasterizer one per frame (its fill).
+/// The frame's polygons (`frame/assemble.rs`: the window transform,
+/// facing, culling, clipping) come in as a [`VertexStage`]: each rasterizer
+/// runs it, then walks the [`PolygonSource`] it returns into its own
+/// [`PolygonSink`], receiving the
+/// visible ones, clipped, in window space, with their attributes. The
+/// tiled rasterizer walks one chunk of polygons per sink, in parallel (its
+/// setup and binning); the scanline rasterizer all of them into one sink
+/// (its fill).
 pub(crate) trait Rasterize {
-    /// Draws `scene` into `image` (already of the options' size).
-    fn render(
+    /// Draws `scene`'s polygons, `frame`, into `image` (already of the
+    /// options' size).
+    fn render<V: VertexStage>(
         &mut self,
+        frame: &mut V,
         scene: &Scene,
         options: &RenderOptions,
         lighting: &Lighting,
@@ -39,8 +43,13 @@ pub(crate) trait Rasterize {
     ) -> RenderStats;
     /// How many polygons cover each pixel, row by row, with no depth test
     /// (`options.shading` is flat: no colour is needed).
-    fn coverage(&mut self, scene: &Scene, options: &RenderOptions, lighting: &Lighting)
-        -> Vec<u32>;
+    fn coverage<V: VertexStage>(
+        &mut self,
+        frame: &mut V,
+        scene: &Scene,
+        options: &RenderOptions,
+        lighting: &Lighting,
+    ) -> Vec<u32>;
 }
 
 /// Bits of sub-pixel precision in snapped window coordinates.
@@ -226,31 +235,5 @@ impl Fan {
                 polygon[(self.apex + k + 1) % n],
             ]
         })
-    }
-}
-
-/// The guard band, in NDC units, that keeps window coordinates within ±2^20
-/// pixels, so snapped edge arithmetic fits in `i64` with room to spare.
-pub(crate) fn guard_band(width: u32, height: u32) -> f32 {
-    ((1u32 << 20) as f32 / width.max(height) as f32 - 1.0).max(1.0)
-}
-
-/// The perspective divide and viewport transform, then snapping: where a
-/// clip-space vertex lands in the window, as both rasterizers place it.
-pub fn to_window<const N: usize>(v: &ClipVertex<N>, width: u32, height: u32) -> ScreenVertex<N> {
-    let inv_w = 1.0 / f64::from(v.clip.w);
-    let x = (f64::from(v.clip.x) * inv_w + 1.0) * 0.5 * f64::from(width);
-    let y = (1.0 - f64::from(v.clip.y) * inv_w) * 0.5 * f64::from(height);
-    let depth = (f64::from(v.clip.z) * inv_w + 1.0) * 0.5;
-    // Clipping keeps vertices within the guard band (±2^19 pixels) unless an
-    // edge's ends are both so far away (beyond about 1e20) that f32 cannot
-    // place the cut; the clamp keeps the edge arithmetic from overflowing then.
-    let limit = f64::from(1u32 << 21);
-    ScreenVertex {
-        x: snap(x.clamp(-limit, limit)),
-        y: snap(y.clamp(-limit, limit)),
-        depth: depth as f32,
-        inv_w: inv_w as f32,
-        attrs: v.attrs,
     }
 }

@@ -41,7 +41,7 @@ pub(crate) struct SceneRefs<'a> {
     /// One normal per corner.
     pub normals: &'a CornerNormals,
     /// One normal per polygon, `None` where its area is zero.
-    pub faces: Vec<Option<Vec3>>,
+    pub faces: &'a [Option<Vec3>],
     /// The frame's lighting.
     pub lighting: Lighting,
 }

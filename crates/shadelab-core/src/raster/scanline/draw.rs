@@ -1,18 +1,19 @@
-//! The scanline rasterizer's frame: polygon assembly (`raster/assemble.rs`)
-//! hands over each polygon in order, clipped and in window space, and the
+//! The scanline rasterizer's frame: the frame's polygon assembly
+//! (`frame/assemble.rs`, walked through [`PolygonSource`]) hands over each
+//! polygon in order, clipped and in window space, and the
 //! rasterizer fills it through a shading method (`shade::scalar`) into a
 //! [`Target`] (the image and depth buffer, a coverage counter, or a probe).
 
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 
 use super::{rasterize_fan_with, rasterize_polygon_with, ScanlineOptions, SpanTrace};
 use crate::color::{Rgb, Rgb8};
 use crate::image::Image;
 use crate::mesh::Mesh;
-use crate::normals::face_normals;
 use crate::palette::Palette;
-use crate::raster::assemble::{project_vertices, Assembly, PolygonSink, Projected, Scratch, View};
-use crate::raster::{guard_band, FragmentSink, Rasterize, ScreenVertex};
+use crate::raster::{
+    FragmentSink, PolygonSink, PolygonSource, Rasterize, Scratch, ScreenVertex, VertexStage,
+};
 use crate::scene::{Polygons, RenderOptions, RenderStats, Scene};
 use crate::shade::{
     with_method, Indexed, Lighting, Method, MethodVisitor, Output, SceneRefs, TrueColor,
@@ -58,27 +59,29 @@ pub(crate) trait Target {
 pub(crate) struct ScanlineRasterizer;
 
 impl Rasterize for ScanlineRasterizer {
-    fn render(
+    fn render<V: VertexStage>(
         &mut self,
+        frame: &mut V,
         scene: &Scene,
         options: &RenderOptions,
         lighting: &Lighting,
         image: &mut Image,
     ) -> RenderStats {
-        let mut frame = Frame {
+        let mut target = Buffers {
             color: std::mem::replace(image, Image::filled(1, 1, options.background)),
             depth: vec![1.0; options.width as usize * options.height as usize],
             width: options.width,
         };
-        frame.color.pixels_mut().fill(options.background);
-        let mut stats = draw(scene, options, lighting, &mut frame);
-        stats.covered_pixels = frame.depth.iter().filter(|&&d| d < 1.0).count() as u64;
-        *image = frame.color;
+        target.color.pixels_mut().fill(options.background);
+        let mut stats = draw(&frame.project(), scene, options, lighting, &mut target);
+        stats.covered_pixels = target.depth.iter().filter(|&&d| d < 1.0).count() as u64;
+        *image = target.color;
         stats
     }
 
-    fn coverage(
+    fn coverage<V: VertexStage>(
         &mut self,
+        frame: &mut V,
         scene: &Scene,
         options: &RenderOptions,
         lighting: &Lighting,
@@ -87,18 +90,19 @@ impl Rasterize for ScanlineRasterizer {
             counts: vec![0; options.width as usize * options.height as usize],
             width: options.width,
         };
-        draw(scene, options, lighting, &mut counter);
+        draw(&frame.project(), scene, options, lighting, &mut counter);
         counter.counts
     }
 }
 
-struct Frame {
+/// The image and its depth buffer.
+struct Buffers {
     color: Image,
     depth: Vec<f32>,
     width: u32,
 }
 
-impl Target for Frame {
+impl Target for Buffers {
     fn test(&mut self, x: u32, y: u32, depth: f32) -> bool {
         let d = &mut self.depth[y as usize * self.width as usize + x as usize];
         // Depth test "less", and the near/far clip keeps depth within [0, 1].
@@ -164,48 +168,41 @@ impl<const N: usize, M: Method<N>, T: Target, O: Output> FragmentSink<N>
     }
 }
 
-/// Draws a frame with the scanline rasterizer into `target`.
-pub(crate) fn draw(
+/// Draws a frame's `polygons` with the scanline rasterizer into `target`.
+pub(crate) fn draw<P: PolygonSource>(
+    polygons: &P,
     scene: &Scene,
     options: &RenderOptions,
     lighting: &Lighting,
     target: &mut impl Target,
 ) -> RenderStats {
-    let aspect = options.width as f32 / options.height as f32;
-    let view_projection = scene.camera.projection(aspect) * scene.camera.view();
     let refs = SceneRefs {
         mesh: &scene.mesh,
         normals: &scene.normals,
-        faces: face_normals(&scene.mesh),
+        faces: polygons.faces(),
         lighting: lighting.clone(),
     };
     let draw = Draw {
+        polygons,
         scene: &refs,
         options,
-        view_projection,
         target,
     };
     with_method(options.shading, options.gouraud_specular, &refs, draw)
 }
 
 /// [`draw_with`] waiting for its method.
-struct Draw<'a, T> {
+struct Draw<'a, P, T> {
+    polygons: &'a P,
     scene: &'a SceneRefs<'a>,
     options: &'a RenderOptions,
-    view_projection: Mat4,
     target: &'a mut T,
 }
 
-impl<T: Target> MethodVisitor for Draw<'_, T> {
+impl<P: PolygonSource, T: Target> MethodVisitor for Draw<'_, P, T> {
     type Out = RenderStats;
     fn visit<const N: usize, M: Method<N>>(self, method: &mut M) -> RenderStats {
-        draw_with(
-            self.scene,
-            self.options,
-            self.view_projection,
-            method,
-            self.target,
-        )
+        draw_with(self.polygons, self.scene, self.options, method, self.target)
     }
 }
 
@@ -258,32 +255,16 @@ impl<const N: usize, M: Method<N>, T: Target> Fill<'_, N, M, T> {
     }
 }
 
-fn draw_with<const N: usize, M: Method<N>, T: Target>(
+fn draw_with<const N: usize, P: PolygonSource, M: Method<N>, T: Target>(
+    polygons: &P,
     scene: &SceneRefs<'_>,
     options: &RenderOptions,
-    view_projection: Mat4,
     method: &mut M,
     target: &mut T,
 ) -> RenderStats {
-    let (width, height) = (options.width, options.height);
     let mesh = scene.mesh;
-    let view = View {
-        view_projection,
-        width,
-        height,
-        guard: guard_band(width, height),
-    };
-    let mut projected = vec![Projected::default(); mesh.positions().len()];
-    project_vertices(&view, mesh.positions(), &mut projected);
-    let assembly = Assembly {
-        mesh,
-        faces: &scene.faces,
-        projected: &projected,
-        view,
-        cull_backfaces: options.cull_backfaces,
-    };
     let mut stats = RenderStats {
-        polygons: mesh.polygon_count() as u64,
+        polygons: polygons.count() as u64,
         ..RenderStats::default()
     };
     let mut fill = Fill {
@@ -298,8 +279,8 @@ fn draw_with<const N: usize, M: Method<N>, T: Target>(
         target,
         shaded: 0,
     };
-    let faces = 0..mesh.polygon_count();
-    assembly.walk(faces, &mut Scratch::default(), &mut fill, &mut stats);
+    let faces = 0..polygons.count();
+    polygons.walk(faces, &mut Scratch::default(), &mut fill, &mut stats);
     stats.fragments_shaded = fill.shaded;
     stats.lighting_evaluations = fill.method.evaluations();
     stats

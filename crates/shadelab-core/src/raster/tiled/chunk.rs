@@ -1,5 +1,5 @@
 //! Setup: one chunk of consecutive polygons walked by polygon assembly
-//! (`raster/assemble.rs`: faced, culled, clipped when needed), then set up
+//! (`frame/assemble.rs`: faced, culled, clipped when needed), then set up
 //! as triangles and binned into bands (step 2 of `mod.rs`); flat shading
 //! lights its polygons here, 8 at a time.
 
@@ -7,8 +7,9 @@ use glam::Vec3;
 
 use super::setup::{plane_count, Plane, Triangle, ALL_ATTRS, BAND_ROWS};
 
-use crate::raster::assemble::{Assembly, PolygonSink, Projected, Scratch};
-use crate::raster::{fan, signed_area_ccw, ScreenVertex};
+use crate::raster::{
+    fan, signed_area_ccw, PolygonSink, PolygonSource, Projected, Scratch, ScreenVertex,
+};
 use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::{PhongShader, MAX_ATTRS};
 use crate::simd::{dispatch, prefetch, Kernel, Simd, SimdLevel, Vf};
@@ -43,7 +44,8 @@ pub(super) struct Chunk {
     pub(super) stats: RenderStats,
     scratch: Scratch<ALL_ATTRS>,
     /// Flat shading: each front polygon's unit normal and centroid, lit in
-    /// SIMD batches once setup is done; triangles hold an index until then.
+    /// SIMD batches once setup is done, into `flat_colors` (packed); its
+    /// triangles hold the index.
     pub(super) flat_surfaces: Vec<[f32; 6]>,
     pub(super) flat_colors: Vec<i32>,
 }
@@ -298,10 +300,10 @@ impl Chunk {
     /// `A` attributes, compiled for the SIMD level (for the compiler's own
     /// vectorization: the arithmetic is the same, so are the results).
     #[inline(always)]
-    fn setup<const A: usize>(
+    fn setup<const A: usize, P: PolygonSource>(
         &mut self,
         frame: &Frame<'_>,
-        assembly: &Assembly<'_>,
+        polygons: &P,
         faces: std::ops::Range<usize>,
     ) {
         self.bins.resize_with(frame.bands, Bin::default);
@@ -316,14 +318,15 @@ impl Chunk {
             bins: &mut self.bins,
             flat_surfaces: &mut self.flat_surfaces,
         };
-        assembly.walk(faces, &mut self.scratch, &mut sink, &mut self.stats);
+        polygons.walk(faces, &mut self.scratch, &mut sink, &mut self.stats);
         if frame.lights_polygons() {
             self.light_flat_polygons(frame);
         }
     }
 
-    /// Lights the front polygons of flat shading, 8 at a time, and gives
-    /// their triangles the colour.
+    /// Lights the front polygons of flat shading, 8 at a time, into
+    /// `flat_colors` (a flat triangle's `color` is its index there: the
+    /// band looks it up, see `BandKernel`).
     pub(super) fn light_flat_polygons(&mut self, frame: &Frame<'_>) {
         self.stats.lighting_evaluations += self.flat_surfaces.len() as u64;
         self.flat_colors.clear();
@@ -335,34 +338,29 @@ impl Chunk {
             shader: frame.phong,
         };
         dispatch(frame.simd, kernel);
-        for bin in &mut self.bins {
-            for t in &mut bin.triangles {
-                t.color = self.flat_colors[t.color as usize] as u32;
-            }
-        }
     }
 }
 
 /// One chunk's setup, compiled per SIMD level.
-pub(super) struct SetupKernel<'a, 'f> {
+pub(super) struct SetupKernel<'a, 'f, P> {
     pub(super) chunk: &'a mut Chunk,
     pub(super) frame: &'a Frame<'f>,
-    pub(super) assembly: &'a Assembly<'f>,
+    pub(super) polygons: &'a P,
     pub(super) faces: std::ops::Range<usize>,
 }
 
-impl Kernel for SetupKernel<'_, '_> {
+impl<P: PolygonSource> Kernel for SetupKernel<'_, '_, P> {
     type Output = ();
 
     #[inline(always)]
     fn run<S: Simd>(self, _: S) {
         let (chunk, frame, faces) = (self.chunk, self.frame, self.faces);
-        let assembly = self.assembly;
+        let polygons = self.polygons;
         match frame.method {
-            Some(Shading::Flat) => chunk.setup::<0>(frame, assembly, faces),
-            Some(Shading::Gouraud) => chunk.setup::<3>(frame, assembly, faces),
-            Some(Shading::Phong) => chunk.setup::<6>(frame, assembly, faces),
-            None => chunk.setup::<ALL_ATTRS>(frame, assembly, faces),
+            Some(Shading::Flat) => chunk.setup::<0, P>(frame, polygons, faces),
+            Some(Shading::Gouraud) => chunk.setup::<3, P>(frame, polygons, faces),
+            Some(Shading::Phong) => chunk.setup::<6, P>(frame, polygons, faces),
+            None => chunk.setup::<ALL_ATTRS, P>(frame, polygons, faces),
         }
     }
 }

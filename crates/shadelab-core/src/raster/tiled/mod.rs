@@ -4,11 +4,13 @@
 //!
 //! The pipeline of a frame:
 //!
-//! 1. **Vertices** (parallel): each position transformed and snapped once
-//!    (`raster/assemble.rs`'s vertex stage); Gouraud lights each distinct
-//!    (position, normal) 8 at a time.
+//! 1. **Vertices** (parallel): the frame's vertex stage transforms and
+//!    snaps each position once (`frame/window.rs`, run through
+//!    [`crate::raster::VertexStage`]), beside Gouraud's lighting of each
+//!    distinct (position, normal), 8 at a time.
 //! 2. **Setup** (parallel, in chunks of consecutive polygons): each chunk
-//!    is walked by polygon assembly (`raster/assemble.rs`: facing, culling
+//!    is walked by the frame's polygon assembly (`frame/assemble.rs`,
+//!    through [`crate::raster::PolygonSource`]: facing, culling
 //!    before any attribute is read, clipping when needed), which hands its
 //!    polygons to the chunk's sink (`chunk.rs`). A front-facing triangle
 //!    needing no clipping (nearly all of them) goes straight from the
@@ -16,14 +18,17 @@
 //!    edge functions and attribute planes. Anything else (clipped, back
 //!    faces drawn, polygons) is split into the fan both rasterizers use.
 //!    Each triangle is copied, with its planes, into the bin of every band
-//!    it touches.
+//!    it touches. Flat shading lights the chunk's front polygons after its
+//!    walk, 8 at a time; a flat triangle holds its polygon's index into the
+//!    chunk's colours.
 //! 3. **Bands** (parallel): a band reads its chunks' bins in order (see
-//!    `band/`), then writes its rows of the image.
+//!    `band/`), looking up flat triangles' colours in their chunk's, then
+//!    writes its rows of the image.
 //!
 //! What must hold, and why it is built this way:
 //!
 //! * **The same pixels as the scanline reference.** Every polygon goes
-//!   through the same assembly (`raster/assemble.rs`: clipping, viewport
+//!   through the same assembly (`frame/assemble.rs`: clipping, viewport
 //!   transform and snapping, facing) and the same [`crate::raster::fan`] as
 //!   the scanline rasterizer drawing fans, so both see identical snapped
 //!   triangles; coverage is then
@@ -79,12 +84,11 @@ use self::band::{band_rows, Band, Colors, Pass};
 use self::chunk::{Chunk, Frame, SetupKernel};
 pub(crate) use self::setup::BAND_ROWS;
 use self::setup::{plane_count, PLANES};
-use self::vertices::{light_vertices, FaceNormals, VertexTable};
+use self::vertices::{light_vertices, VertexTable};
 
 use crate::color::Rgb8;
 use crate::image::Image;
-use crate::raster::assemble::{project_vertices, Assembly, Projected, View};
-use crate::raster::{guard_band, Rasterize};
+use crate::raster::{PolygonSource, Rasterize, VertexStage};
 use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::{AllMethods, FlatShader, GouraudShader, Lighting, PhongShader, Shader};
 use crate::simd::{dispatch, Kernel, Simd, SimdLevel};
@@ -101,12 +105,7 @@ const SETUP_CHUNKS_PER_THREAD: usize = 8;
 #[derive(Debug)]
 pub(crate) struct TiledRasterizer {
     simd: SimdLevel,
-    /// Per mesh position: its snapped window position (16 bytes, so that
-    /// setup's random accesses stay in cache). Clip-space positions are not
-    /// kept: the few polygons that need clipping compute theirs again.
-    projected: Vec<Projected>,
     vertices: VertexTable,
-    faces: FaceNormals,
     /// Gouraud colours per distinct vertex, front and (culling off) back,
     /// clamped to [0, 1] and kept in byte units ([`byte_units`]).
     lit: Vec<[f32; 3]>,
@@ -171,12 +170,21 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         self.band.begin(o.width, y1 - y0, pass, columns, all);
         let stride = if all { PLANES } else { plane_count(S::ATTRS) };
         let lanes = self.shader.lanes(simd);
+        // Flat colours are lit per chunk after its setup: a flat triangle
+        // holds its polygon's index into the chunk's colours.
+        let flat = S::ATTRS == 0 || all;
         for chunk in self.chunks {
             let bin = &chunk.bins[self.index];
             for (t, planes) in bin.triangles.iter().zip(bin.planes.chunks_exact(stride)) {
+                let color = if flat {
+                    chunk.flat_colors[t.color as usize] as u32
+                } else {
+                    t.color
+                };
                 self.band.draw(
                     simd,
                     t,
+                    color,
                     planes,
                     self.shader,
                     &lanes,
@@ -257,9 +265,7 @@ impl TiledRasterizer {
             } else {
                 SimdLevel::Portable
             },
-            projected: Vec::new(),
             vertices: VertexTable::default(),
-            faces: FaceNormals::default(),
             lit: Vec::new(),
             lit_back: Vec::new(),
             chunks: Vec::new(),
@@ -276,15 +282,17 @@ impl TiledRasterizer {
 
 impl Rasterize for TiledRasterizer {
     /// Draws a validated scene into `image` (already of the right size).
-    fn render(
+    fn render<V: VertexStage>(
         &mut self,
+        vertices: &mut V,
         scene: &Scene,
         options: &RenderOptions,
         lighting: &Lighting,
         image: &mut Image,
     ) -> RenderStats {
         let all_rows = 0..options.height;
-        let mut stats = self.geometry(scene, options, lighting, Some(options.shading), &all_rows);
+        let method = Some(options.shading);
+        let mut stats = self.geometry(vertices, scene, options, lighting, method, &all_rows);
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
         let background = packed(options.background);
@@ -320,14 +328,16 @@ impl Rasterize for TiledRasterizer {
     }
 
     /// How many triangles cover each pixel, with no depth test.
-    fn coverage(
+    fn coverage<V: VertexStage>(
         &mut self,
+        vertices: &mut V,
         scene: &Scene,
         options: &RenderOptions,
         lighting: &Lighting,
     ) -> Vec<u32> {
         let all_rows = 0..options.height;
-        self.geometry(scene, options, lighting, Some(options.shading), &all_rows);
+        let method = Some(options.shading);
+        self.geometry(vertices, scene, options, lighting, method, &all_rows);
         let width = options.width as usize;
         let mut counts = vec![0u32; width * options.height as usize];
         let (chunks, simd) = (&self.chunks, self.simd);
@@ -358,15 +368,16 @@ impl TiledRasterizer {
     /// of those rows; triangles wholly outside them get no planes and no
     /// bins. Every polygon's counts are the frame's; the pixels' counts
     /// (fragments, covered pixels, Phong's evaluations) are the rows'.
-    pub fn render_methods(
+    pub fn render_methods<V: VertexStage>(
         &mut self,
+        vertices: &mut V,
         scene: &Scene,
         options: &RenderOptions,
         lighting: &Lighting,
         rows: &std::ops::Range<u32>,
         images: [&mut Image; 3],
     ) -> [RenderStats; 3] {
-        let stats = self.geometry(scene, options, lighting, None, rows);
+        let stats = self.geometry(vertices, scene, options, lighting, None, rows);
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
         let background = packed(options.background);
@@ -421,54 +432,38 @@ impl TiledRasterizer {
         })
     }
 
-    /// Vertex stage, then setup and binning, for `method`'s attributes
-    /// (`None`: the three methods') and the image rows `rows` (whole bands;
-    /// triangles outside them are counted, not set up); leaves the bins in
+    /// The vertex stage, Gouraud's vertex lighting, then setup and binning
+    /// of the frame's polygons, for `method`'s attributes (`None`: the
+    /// three methods') and the image rows `rows` (whole bands; triangles
+    /// outside them are counted, not set up); leaves the bins in
     /// `self.chunks`.
     /// The statistics' lighting evaluations are the frame's (flat's and
     /// Gouraud's when all three), also kept in `self.evaluations`.
-    fn geometry(
+    fn geometry<V: VertexStage>(
         &mut self,
+        vertices: &mut V,
         scene: &Scene,
         options: &RenderOptions,
         lighting: &Lighting,
         method: Option<Shading>,
         rows: &std::ops::Range<u32>,
     ) -> RenderStats {
-        let (width, height) = (options.width, options.height);
-        let aspect = width as f32 / height as f32;
-        let view = View {
-            view_projection: scene.camera.projection(aspect) * scene.camera.view(),
-            width,
-            height,
-            guard: guard_band(width, height),
-        };
-        let mesh = &scene.mesh;
+        let height = options.height;
         self.phong.update(lighting);
-
-        let positions = mesh.positions();
-        let projected = &mut self.projected;
-        // The positions' projection and Gouraud's vertex lighting are
-        // independent: run together, neither waits for the other's last task.
-        let project = || {
-            projected.resize(positions.len(), Projected::default());
-            projected
-                .par_chunks_mut(4096)
-                .zip(positions.par_chunks(4096))
-                .for_each(|(out, points)| project_vertices(&view, points, out));
-        };
-        let (vertices, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
+        let (vertex_table, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
         // Vertex lighting, like setup, runs the AVX2 build where AVX-512 is chosen.
         let (phong, simd) = (&self.phong, self.simd.without_avx512());
         let light = || match method {
             Some(Shading::Gouraud) | None => {
-                light_vertices(vertices, lit, lit_back, phong, simd, scene, options)
+                light_vertices(vertex_table, lit, lit_back, phong, simd, scene, options)
             }
             _ => 0,
         };
-        let ((), evaluations) = rayon::join(project, light);
+        // The frame's vertex stage and Gouraud's vertex lighting are
+        // independent: run together, neither waits for the other's last task.
+        let (polygons, evaluations) = rayon::join(|| vertices.project(), light);
+        let polygons = &polygons;
 
-        self.faces.update(mesh);
         let bands = height.div_ceil(BAND_ROWS) as usize;
         let threads = rayon::current_num_threads().max(1);
         self.bands.resize_with(threads, Mutex::default);
@@ -494,33 +489,26 @@ impl TiledRasterizer {
             bands,
             rows: rows.start as i32..rows.end as i32,
         };
-        let assembly = Assembly {
-            mesh,
-            faces: &self.faces.normals,
-            projected: &self.projected,
-            view,
-            cull_backfaces: options.cull_backfaces,
-        };
-        let polygons = mesh.polygon_count();
+        let count = polygons.count();
         self.chunks
             .par_iter_mut()
             .enumerate()
             .for_each(|(i, chunk)| {
-                let start = polygons * i / chunk_count;
-                let end = polygons * (i + 1) / chunk_count;
+                let start = count * i / chunk_count;
+                let end = count * (i + 1) / chunk_count;
                 dispatch(
                     frame.simd,
                     SetupKernel {
                         chunk,
                         frame: &frame,
-                        assembly: &assembly,
+                        polygons,
                         faces: start..end,
                     },
                 );
             });
 
         let mut stats = RenderStats {
-            polygons: polygons as u64,
+            polygons: count as u64,
             lighting_evaluations: evaluations,
             ..RenderStats::default()
         };

@@ -70,7 +70,9 @@ pub(crate) struct Triangle {
     pub x1: i32,
     pub y1: i32,
     pub walk: Walk,
-    /// Flat shading's colour, packed as `r | g << 8 | b << 16`.
+    /// Flat shading (and the three methods at once): the index of its
+    /// polygon's colour in its chunk's `flat_colors`, packed as
+    /// `r | g << 8 | b << 16` (see `chunk.rs`).
     pub color: u32,
     /// −1 for a back face drawn with culling off (Phong turns its normals), else 1.
     pub flip: f32,

@@ -7,7 +7,6 @@ use std::collections::HashMap;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::normals::face_normal;
 use crate::scene::{RenderOptions, Scene};
 use crate::shade::{byte_units, PhongShader, Terms, MAX_ATTRS};
 use crate::simd::{dispatch, Kernel, Simd, SimdLevel, Vf};
@@ -67,37 +66,6 @@ impl VertexTable {
             self.position[id as usize] = p;
         }
         self.used = self.position.iter().filter(|&&p| p != u32::MAX).count() as u64;
-    }
-}
-
-/// Each polygon's unit face normal (`None` when degenerate), recomputed
-/// only when the mesh's geometry changes.
-#[derive(Debug, Default)]
-pub(super) struct FaceNormals {
-    /// The geometry they were computed for ([`crate::mesh::Mesh::geometry_id`], 0: none).
-    pub(super) key_geometry: u64,
-    pub(super) normals: Vec<Option<Vec3>>,
-}
-
-impl FaceNormals {
-    pub(super) fn update(&mut self, mesh: &crate::mesh::Mesh) {
-        if self.key_geometry == mesh.geometry_id() {
-            return;
-        }
-        self.key_geometry = mesh.geometry_id();
-        self.normals.resize(mesh.polygon_count(), None);
-        self.normals
-            .par_chunks_mut(1024)
-            .enumerate()
-            .for_each(|(k, normals)| {
-                let mut points = Vec::new();
-                for (i, normal) in normals.iter_mut().enumerate() {
-                    points.clear();
-                    let polygon = mesh.polygon(k * 1024 + i);
-                    points.extend(polygon.iter().map(|&v| mesh.positions()[v as usize]));
-                    *normal = face_normal(&points);
-                }
-            });
     }
 }
 

@@ -9,13 +9,15 @@ use crate::shade::{FlatShader, GouraudShader, Shader, MAX_ATTRS};
 use crate::simd::{Simd, Vf, Vi};
 
 impl Band {
-    /// Draws one triangle's rows within this band (rows `band_y0..band_y1`).
+    /// Draws one triangle's rows within this band (rows `band_y0..band_y1`),
+    /// `color` its flat colour (packed).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub fn draw<S: Simd, Sh: Shader>(
         &mut self,
         s: S,
         t: &Triangle,
+        color: u32,
         planes: &[Plane],
         shader: &Sh,
         lanes: &Sh::Lanes<S>,
@@ -37,6 +39,7 @@ impl Band {
         }
         let fill = Fill {
             t,
+            color,
             planes,
             shader,
             shader_lanes: lanes,
@@ -279,7 +282,7 @@ impl Band {
         at: usize,
     ) {
         let none = [Vf::splat(s, 0.0); MAX_ATTRS];
-        let flat = FlatShader.shade(&(), s, f.t.color, f.t.flip, &none);
+        let flat = FlatShader.shade(&(), s, f.color, f.t.flip, &none);
         let plane = |j: usize| &f.planes[GOURAUD_OF_ALL[j]];
         let colors = interpolate_planes(
             s,
@@ -289,7 +292,7 @@ impl Band {
             |j| Vf::splat(s, plane(j).dx),
             |j| Vf::splat(s, plane(j).at_origin + plane(j).dy * dy),
         );
-        let gouraud = GouraudShader.shade(&(), s, f.t.color, f.t.flip, &colors);
+        let gouraud = GouraudShader.shade(&(), s, f.color, f.t.flip, &colors);
         for (k, colors) in [flat, gouraud].into_iter().enumerate() {
             let slot = &mut self.others[k][self.others_at[k] + at..][..8];
             let slot: &mut [i32; 8] = slot.try_into().unwrap();
@@ -339,6 +342,8 @@ pub(super) struct Row {
 /// What every block of one triangle needs.
 pub(super) struct Fill<'a, S: Simd, Sh: Shader> {
     pub(super) t: &'a Triangle,
+    /// The triangle's flat colour, packed.
+    pub(super) color: u32,
     pub(super) planes: &'a [Plane],
     pub(super) shader: &'a Sh,
     pub(super) shader_lanes: &'a Sh::Lanes<S>,
@@ -432,9 +437,7 @@ fn shade_block<S: Simd, Sh: Shader>(
         return 0;
     }
     let attrs = interpolate(s, f, x, |j| Vf::splat(s, row.values[j]));
-    let colors = f
-        .shader
-        .shade(f.shader_lanes, s, f.t.color, f.t.flip, &attrs);
+    let colors = f.shader.shade(f.shader_lanes, s, f.color, f.t.flip, &attrs);
     // Always blended, even for a whole block: a branch on it is
     // mispredicted on meshes whose blocks are partly covered at random
     // (12 % of the teapot's 1920×1080 flat frame).

@@ -1,7 +1,10 @@
-//! The frame: checks a request, sets up the frame's lighting and hands the
-//! scene to the rasterizer it names. Both rasterizers implement
-//! [`Rasterize`]; everything they share below the frame (window transform,
-//! snapping, fans) lives in `raster/`, the shading methods in `shade/`.
+//! The frame: checks a request, sets up the frame's lighting and its
+//! polygons (the window transform, `window.rs`, and polygon assembly,
+//! `assemble.rs`: facing, culling, clipping), and hands them to the
+//! rasterizer it names. Both rasterizers implement [`Rasterize`] and
+//! receive the polygons as a [`crate::raster::VertexStage`]; what they share
+//! below the frame (snapping, fans) lives in `raster/`, the shading
+//! methods in `shade/`.
 //!
 //! Facing is decided from the snapped window polygon, as OpenGL does. A
 //! back-facing polygon drawn with culling off is lit with its normals turned
@@ -13,6 +16,12 @@
 //! the indexed palette ([`RenderOptions::palette`]). A probe (`probe.rs`)
 //! watches one frame through the scanline rasterizer's `Target` hooks,
 //! which default to nothing.
+
+mod assemble;
+mod window;
+
+pub(crate) use self::assemble::Geometry;
+pub use self::window::to_window;
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -92,6 +101,8 @@ pub fn draws_in_parts(options: &RenderOptions) -> bool {
 pub struct Renderer {
     tiled: TiledRasterizer,
     scanline: ScanlineRasterizer,
+    /// The frame's face normals and window positions.
+    geometry: Geometry,
     /// The frame's lighting, rebuilt in place each frame.
     lighting: Lighting,
 }
@@ -113,6 +124,7 @@ impl Renderer {
         Renderer {
             tiled: TiledRasterizer::new(level),
             scanline: ScanlineRasterizer,
+            geometry: Geometry::default(),
             lighting: Lighting {
                 ambient: Rgb::default(),
                 lights: Vec::new(),
@@ -144,8 +156,17 @@ impl Renderer {
             *image = Image::filled(options.width, options.height, options.background);
         }
         set_lighting(&mut self.lighting, scene, options);
-        let rasterizer = pick(&mut self.tiled, &mut self.scanline, options.rasterizer);
-        Ok(rasterizer.render(scene, options, &self.lighting, image))
+        let mut frame = self.geometry.frame(scene, options);
+        let lighting = &self.lighting;
+        Ok(match options.rasterizer {
+            Rasterizer::Tiled => self
+                .tiled
+                .render(&mut frame, scene, options, lighting, image),
+            Rasterizer::Scanline => {
+                let scanline = &mut self.scanline;
+                scanline.render(&mut frame, scene, options, lighting, image)
+            }
+        })
     }
 
     /// Renders `scene` with each shading method, flat, Gouraud and Phong
@@ -231,9 +252,10 @@ impl Renderer {
             }
         }
         set_lighting(&mut self.lighting, scene, options);
-        let stats = self
-            .tiled
-            .render_methods(scene, options, &self.lighting, &rows, images);
+        let mut frame = self.geometry.frame(scene, options);
+        let lighting = &self.lighting;
+        let stats =
+            (self.tiled).render_methods(&mut frame, scene, options, lighting, &rows, images);
         Ok((stats, rows))
     }
 
@@ -253,20 +275,14 @@ impl Renderer {
             shading: Shading::Flat,
             ..*options
         };
-        let rasterizer = pick(&mut self.tiled, &mut self.scanline, options.rasterizer);
-        Ok(rasterizer.coverage(scene, &options, &lighting))
-    }
-}
-
-/// The rasterizer `which` of a renderer's two.
-fn pick<'a>(
-    tiled: &'a mut TiledRasterizer,
-    scanline: &'a mut ScanlineRasterizer,
-    which: Rasterizer,
-) -> &'a mut dyn Rasterize {
-    match which {
-        Rasterizer::Tiled => tiled,
-        Rasterizer::Scanline => scanline,
+        let mut frame = self.geometry.frame(scene, &options);
+        Ok(match options.rasterizer {
+            Rasterizer::Tiled => self.tiled.coverage(&mut frame, scene, &options, &lighting),
+            Rasterizer::Scanline => {
+                let scanline = &mut self.scanline;
+                scanline.coverage(&mut frame, scene, &options, &lighting)
+            }
+        })
     }
 }
 

@@ -1,9 +1,15 @@
 //! Polygon assembly, the one front end of both rasterizers: from a mesh's
 //! polygons to clipped, window-space, counter-clockwise polygons with
-//! their attributes, handed to a [`PolygonSink`].
+//! their attributes, handed to a rasterizer's [`PolygonSink`].
 //!
-//! Every polygon of a frame takes this walk, in the scanline rasterizer
-//! (one sink for the frame) and in the tiled one (one per setup chunk):
+//! The frame owns the geometry of a frame ([`Geometry`]: face normals, the
+//! vertex stage's output) and hands the rasterizer an [`Unprojected`], which the
+//! rasterizer knows only as a [`VertexStage`]: it runs the stage when it
+//! suits it (the tiled rasterizer beside its own per-vertex lighting) and
+//! gets an [`Assembly`], a [`PolygonSource`] whose polygons it walks, any
+//! run of consecutive ones at a time, into a sink of its choosing: the
+//! scanline rasterizer all of them into one, the tiled one a chunk per
+//! setup task. Every polygon of a frame takes this walk:
 //!
 //! 1. **Degenerate** polygons (no face normal) are counted and dropped.
 //! 2. **Facing** comes first, from the snapped positions of the vertex
@@ -33,151 +39,113 @@
 
 use std::ops::Range;
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::Vec3;
+use rayon::prelude::*;
 
-use super::{signed_area_ccw, to_window, ScreenVertex};
-use crate::clip::{clip_polygon, is_inside, ClipVertex};
+use super::window::{guard_band, project_vertices, to_window, View};
+use crate::clip::{clip_polygon, ClipVertex};
 use crate::mesh::Mesh;
-use crate::scene::RenderStats;
+use crate::normals::face_normal;
+use crate::raster::{signed_area_ccw, PolygonSink, PolygonSource, Projected, Scratch, VertexStage};
+use crate::scene::{RenderOptions, RenderStats, Scene};
 use crate::simd::prefetch;
 
 /// How many polygons ahead the walk starts loading a polygon's vertices.
 const PREFETCH_AHEAD: usize = 8;
 
-/// A vertex's window position, when it is inside the view volume and guard
-/// band (`x == OUTSIDE` otherwise). Snapped coordinates stay within ±2^29,
-/// so they fit in `i32`; 16 bytes, so that the walk's random accesses stay
-/// in cache.
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct Projected {
-    pub(crate) x: i32,
-    pub(crate) y: i32,
-    pub(crate) depth: f32,
-    pub(crate) inv_w: f32,
+/// A frame's geometry, kept from frame to frame: each polygon's unit face
+/// normal (recomputed only when the mesh's geometry changes) and each
+/// position's window position (the vertex stage, every frame).
+#[derive(Debug, Default)]
+pub(crate) struct Geometry {
+    /// The geometry the face normals are of ([`Mesh::geometry_id`], 0: none).
+    key_geometry: u64,
+    faces: Vec<Option<Vec3>>,
+    projected: Vec<Projected>,
 }
 
-impl Projected {
-    pub(crate) const OUTSIDE: i32 = i32::MIN;
-
-    pub(crate) fn inside(&self) -> bool {
-        self.x != Projected::OUTSIDE
+impl Geometry {
+    /// The frame's polygons of `scene` drawn with `options`, the face
+    /// normals brought up to date; the vertex stage is the rasterizer's to
+    /// run ([`VertexStage::project`]).
+    pub(crate) fn frame<'a>(
+        &'a mut self,
+        scene: &'a Scene,
+        options: &RenderOptions,
+    ) -> Unprojected<'a> {
+        let mesh = &scene.mesh;
+        self.update_faces(mesh);
+        let (width, height) = (options.width, options.height);
+        let aspect = width as f32 / height as f32;
+        Unprojected {
+            mesh,
+            faces: &self.faces,
+            projected: &mut self.projected,
+            view: View {
+                view_projection: scene.camera.projection(aspect) * scene.camera.view(),
+                width,
+                height,
+                guard: guard_band(width, height),
+            },
+            cull_backfaces: options.cull_backfaces,
+        }
     }
 
-    /// The window vertex, with attributes `attrs`.
-    #[inline(always)]
-    pub(crate) fn vertex<const N: usize>(&self, attrs: [f32; N]) -> ScreenVertex<N> {
-        ScreenVertex {
-            x: i64::from(self.x),
-            y: i64::from(self.y),
-            depth: self.depth,
-            inv_w: self.inv_w,
-            attrs,
+    fn update_faces(&mut self, mesh: &Mesh) {
+        if self.key_geometry == mesh.geometry_id() {
+            return;
+        }
+        self.key_geometry = mesh.geometry_id();
+        self.faces.resize(mesh.polygon_count(), None);
+        self.faces
+            .par_chunks_mut(1024)
+            .enumerate()
+            .for_each(|(k, normals)| {
+                let mut points = Vec::new();
+                for (i, normal) in normals.iter_mut().enumerate() {
+                    points.clear();
+                    let polygon = mesh.polygon(k * 1024 + i);
+                    points.extend(polygon.iter().map(|&v| mesh.positions()[v as usize]));
+                    *normal = face_normal(&points);
+                }
+            });
+    }
+}
+
+/// A frame's polygons before the vertex stage.
+pub(crate) struct Unprojected<'a> {
+    mesh: &'a Mesh,
+    faces: &'a [Option<Vec3>],
+    projected: &'a mut Vec<Projected>,
+    view: View,
+    cull_backfaces: bool,
+}
+
+impl VertexStage for Unprojected<'_> {
+    type Polygons<'p>
+        = Assembly<'p>
+    where
+        Self: 'p;
+
+    /// Every position transformed and snapped, in parallel.
+    fn project(&mut self) -> Assembly<'_> {
+        let (positions, view) = (self.mesh.positions(), &self.view);
+        self.projected.resize(positions.len(), Projected::default());
+        self.projected
+            .par_chunks_mut(4096)
+            .zip(positions.par_chunks(4096))
+            .for_each(|(out, points)| project_vertices(view, points, out));
+        Assembly {
+            mesh: self.mesh,
+            faces: self.faces,
+            projected: self.projected.as_slice(),
+            view: self.view,
+            cull_backfaces: self.cull_backfaces,
         }
     }
 }
 
-/// Where a frame's positions land: the camera's transform and the window.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct View {
-    pub(crate) view_projection: Mat4,
-    pub(crate) width: u32,
-    pub(crate) height: u32,
-    /// The guard band, in NDC units ([`super::guard_band`]).
-    pub(crate) guard: f32,
-}
-
-impl View {
-    /// A position in clip space: one expression for the vertex stage and
-    /// for the polygons that clipping recomputes, so both see the same
-    /// values.
-    #[inline(always)]
-    pub(crate) fn clip(&self, p: Vec3) -> Vec4 {
-        self.view_projection * p.extend(1.0)
-    }
-}
-
-/// The vertex stage: each position transformed and snapped once, into
-/// `out` (as long as `points`).
-pub(crate) fn project_vertices(view: &View, points: &[Vec3], out: &mut [Projected]) {
-    for (o, p) in out.iter_mut().zip(points) {
-        let clip = view.clip(*p);
-        *o = if clip.is_finite() && is_inside(clip, view.guard) {
-            let w = to_window(&ClipVertex { clip, attrs: [] }, view.width, view.height);
-            Projected {
-                x: w.x as i32,
-                y: w.y as i32,
-                depth: w.depth,
-                inv_w: w.inv_w,
-            }
-        } else {
-            Projected {
-                x: Projected::OUTSIDE,
-                ..Projected::default()
-            }
-        };
-    }
-}
-
-/// What receives the assembled polygons: a rasterizer's setup (tiled) or
-/// its fill (scanline). `N` attributes per corner.
-pub(crate) trait PolygonSink<const N: usize> {
-    /// The attributes at corner `corner` (of vertex `vertex`), of the
-    /// polygon's front side or, with `back`, its back (normals reversed).
-    fn corner(&mut self, corner: usize, vertex: u32, back: bool) -> [f32; N];
-
-    /// A visible polygon `face` (unit normal `normal`): clipped, in window
-    /// space, counter-clockwise, with its attributes, `back` when it is
-    /// seen from behind (its attributes are then the back's).
-    fn polygon(&mut self, face: usize, normal: Vec3, back: bool, window: &[ScreenVertex<N>]);
-
-    /// A front-facing triangle needing no clipping: polygon `face`, its
-    /// corners `first_corner..first_corner + 3` (of vertices `vertices`) at
-    /// the snapped positions `p`. The default reads the attributes and
-    /// hands it to [`PolygonSink::polygon`]; a sink may first decide
-    /// whether it draws anything at all.
-    #[inline(always)]
-    fn triangle(
-        &mut self,
-        face: usize,
-        normal: Vec3,
-        first_corner: usize,
-        vertices: [u32; 3],
-        p: &[Projected; 3],
-    ) {
-        let window: [ScreenVertex<N>; 3] =
-            std::array::from_fn(|k| p[k].vertex(self.corner(first_corner + k, vertices[k], false)));
-        self.polygon(face, normal, false, &window);
-    }
-
-    /// Starts loading what [`PolygonSink::corner`] reads of corner
-    /// `corner` (of vertex `vertex`), a few polygons ahead.
-    #[inline(always)]
-    fn prefetch_corner(&self, corner: usize, vertex: u32) {
-        let _ = (corner, vertex);
-    }
-}
-
-/// Working storage of the walk, reused from polygon to polygon.
-#[derive(Debug)]
-pub(crate) struct Scratch<const N: usize> {
-    input: Vec<ClipVertex<N>>,
-    clipped: Vec<ClipVertex<N>>,
-    spare: Vec<ClipVertex<N>>,
-    window: Vec<ScreenVertex<N>>,
-}
-
-impl<const N: usize> Default for Scratch<N> {
-    fn default() -> Self {
-        Scratch {
-            input: Vec::new(),
-            clipped: Vec::new(),
-            spare: Vec::new(),
-            window: Vec::new(),
-        }
-    }
-}
-
-/// What the walk reads of a frame.
+/// A frame's polygons, ready to walk: what the walk reads of a frame.
 #[derive(Clone, Copy)]
 pub(crate) struct Assembly<'a> {
     pub(crate) mesh: &'a Mesh,
@@ -189,11 +157,19 @@ pub(crate) struct Assembly<'a> {
     pub(crate) cull_backfaces: bool,
 }
 
-impl Assembly<'_> {
-    /// Walks polygons `faces` in order into `sink`, counting in `stats`
-    /// the degenerate, invisible, culled and rasterized ones.
+impl PolygonSource for Assembly<'_> {
+    fn count(&self) -> usize {
+        self.mesh.polygon_count()
+    }
+
+    fn faces(&self) -> &[Option<Vec3>] {
+        self.faces
+    }
+
+    /// The walk (see the module's notes), inlined into the rasterizer's
+    /// loop.
     #[inline(always)]
-    pub(crate) fn walk<const N: usize, S: PolygonSink<N>>(
+    fn walk<const N: usize, S: PolygonSink<N>>(
         &self,
         faces: Range<usize>,
         scratch: &mut Scratch<N>,
@@ -237,7 +213,9 @@ impl Assembly<'_> {
             self.polygon(face, normal, scratch, sink, stats);
         }
     }
+}
 
+impl Assembly<'_> {
     /// Any polygon: clipped if needed, faced, culled or reversed. Kept out
     /// of the walk's loop, which it would crowd: few polygons come here.
     #[inline(never)]
@@ -375,7 +353,7 @@ mod tests {
     use crate::camera::Camera;
     use crate::models::{builtin_model, BUILTIN_MODELS};
     use crate::normals::face_normals;
-    use crate::raster::guard_band;
+    use crate::raster::ScreenVertex;
 
     /// Records what it is given; a corner's attributes name it. The
     /// default [`PolygonSink::triangle`].
