@@ -18,6 +18,7 @@
 use std::collections::HashMap;
 
 use glam::{DVec3, Vec3};
+use rayon::prelude::*;
 
 use crate::mesh::{CornerNormals, Mesh};
 
@@ -101,18 +102,47 @@ pub fn face_normal(points: &[Vec3]) -> Option<Vec3> {
 
 /// The unit face normal of each polygon of `mesh`, `None` where degenerate.
 pub fn face_normals(mesh: &Mesh) -> Vec<Option<Vec3>> {
-    let mut points = Vec::new();
-    (0..mesh.polygon_count())
-        .map(|f| {
-            points.clear();
-            points.extend(
-                mesh.polygon(f)
-                    .iter()
-                    .map(|&i| mesh.positions()[i as usize]),
-            );
-            face_normal(&points)
-        })
-        .collect()
+    let (mut normals, mut centroids) = (Vec::new(), Vec::new());
+    face_geometry(mesh, &mut normals, &mut centroids);
+    normals
+}
+
+/// The centroid of a polygon: the mean of its corners' positions, the
+/// point flat shading lights.
+pub(crate) fn centroid(points: &[Vec3]) -> Vec3 {
+    points.iter().sum::<Vec3>() / points.len() as f32
+}
+
+/// Each polygon's unit face normal ([`face_normal`]) and [`centroid`], into
+/// `normals` and `centroids` (reusing their storage), in parallel: the frame
+/// keeps them until the mesh's geometry changes.
+pub(crate) fn face_geometry(
+    mesh: &Mesh,
+    normals: &mut Vec<Option<Vec3>>,
+    centroids: &mut Vec<Vec3>,
+) {
+    const CHUNK: usize = 1024;
+    let count = mesh.polygon_count();
+    normals.resize(count, None);
+    centroids.resize(count, Vec3::ZERO);
+    normals
+        .par_chunks_mut(CHUNK)
+        .zip(centroids.par_chunks_mut(CHUNK))
+        .enumerate()
+        .for_each(|(k, (normals, centroids))| {
+            let mut points = Vec::new();
+            for (i, (normal, c)) in normals.iter_mut().zip(centroids).enumerate() {
+                points.clear();
+                let polygon = mesh.polygon(k * CHUNK + i);
+                points.extend(polygon.iter().map(|&v| mesh.positions()[v as usize]));
+                *normal = face_normal(&points);
+                *c = if points.is_empty() {
+                    Vec3::ZERO
+                } else {
+                    centroid(&points)
+                };
+            }
+        });
 }
 
 /// Vertex normals of `mesh` with the given weighting, one per corner.

@@ -495,9 +495,9 @@ fn frames_in_sequence_match_fresh_renders() {
 }
 
 /// A renderer kept between frames caches what it derives from the geometry
-/// (face normals, Gouraud's distinct vertices); each frame after a change
-/// of mesh, of positions only, or of corner normals only must still equal a
-/// fresh renderer's.
+/// (face normals and centroids, the tiled rasterizer's distinct vertices);
+/// each frame after a change of mesh, of positions only, or of corner
+/// normals only must still equal a fresh renderer's, with either rasterizer.
 #[test]
 fn a_kept_renderer_sees_every_change_of_geometry() {
     let teapot = builtin_model("teapot", None).unwrap().normalized();
@@ -523,7 +523,10 @@ fn a_kept_renderer_sees_every_change_of_geometry() {
         (teapot.clone().normalized(), smooth(&teapot)),
         (teapot.clone(), smooth(&teapot)),
     ];
-    for shading in Shading::ALL {
+    for (shading, rasterizer) in Shading::ALL
+        .into_iter()
+        .flat_map(|s| [(s, Rasterizer::Tiled), (s, Rasterizer::Scanline)])
+    {
         let mut kept = Renderer::new();
         for (k, (mesh, normals)) in sequence.iter().enumerate() {
             let s = scene(
@@ -532,7 +535,7 @@ fn a_kept_renderer_sees_every_change_of_geometry() {
                 camera(DVec3::new(0.3, 0.8, 3.0), DVec3::ZERO, 30.0, 0.5, 20.0),
             );
             let o = RenderOptions {
-                rasterizer: Rasterizer::Tiled,
+                rasterizer,
                 ..options(240, 180, shading)
             };
             let mut again = Image::filled(1, 1, Rgb8::default());
@@ -541,7 +544,7 @@ fn a_kept_renderer_sees_every_change_of_geometry() {
             Renderer::new().render_into(&s, &o, &mut fresh).unwrap();
             assert!(
                 again == fresh,
-                "{} frame {k}: a kept renderer drew a different image",
+                "{} {rasterizer:?} frame {k}: a kept renderer drew a different image",
                 shading.name()
             );
         }

@@ -45,7 +45,7 @@ use rayon::prelude::*;
 use super::window::{guard_band, project_vertices, to_window, View};
 use crate::clip::{clip_polygon, ClipVertex};
 use crate::mesh::Mesh;
-use crate::normals::face_normal;
+use crate::normals::face_geometry;
 use crate::raster::{signed_area_ccw, PolygonSink, PolygonSource, Projected, Scratch, VertexStage};
 use crate::scene::{RenderOptions, RenderStats, Scene};
 use crate::simd::prefetch;
@@ -54,13 +54,15 @@ use crate::simd::prefetch;
 const PREFETCH_AHEAD: usize = 8;
 
 /// A frame's geometry, kept from frame to frame: each polygon's unit face
-/// normal (recomputed only when the mesh's geometry changes) and each
+/// normal and centroid (recomputed only when the mesh's geometry changes) and each
 /// position's window position (the vertex stage, every frame).
 #[derive(Debug, Default)]
 pub(crate) struct Geometry {
     /// The geometry the face normals are of ([`Mesh::geometry_id`], 0: none).
     key_geometry: u64,
     faces: Vec<Option<Vec3>>,
+    /// Each polygon's centroid, kept with its face normal.
+    centroids: Vec<Vec3>,
     projected: Vec<Projected>,
 }
 
@@ -80,6 +82,7 @@ impl Geometry {
         Unprojected {
             mesh,
             faces: &self.faces,
+            centroids: &self.centroids,
             projected: &mut self.projected,
             view: View {
                 view_projection: scene.camera.projection(aspect) * scene.camera.view(),
@@ -96,19 +99,7 @@ impl Geometry {
             return;
         }
         self.key_geometry = mesh.geometry_id();
-        self.faces.resize(mesh.polygon_count(), None);
-        self.faces
-            .par_chunks_mut(1024)
-            .enumerate()
-            .for_each(|(k, normals)| {
-                let mut points = Vec::new();
-                for (i, normal) in normals.iter_mut().enumerate() {
-                    points.clear();
-                    let polygon = mesh.polygon(k * 1024 + i);
-                    points.extend(polygon.iter().map(|&v| mesh.positions()[v as usize]));
-                    *normal = face_normal(&points);
-                }
-            });
+        face_geometry(mesh, &mut self.faces, &mut self.centroids);
     }
 }
 
@@ -116,6 +107,7 @@ impl Geometry {
 pub(crate) struct Unprojected<'a> {
     mesh: &'a Mesh,
     faces: &'a [Option<Vec3>],
+    centroids: &'a [Vec3],
     projected: &'a mut Vec<Projected>,
     view: View,
     cull_backfaces: bool,
@@ -138,6 +130,7 @@ impl VertexStage for Unprojected<'_> {
         Assembly {
             mesh: self.mesh,
             faces: self.faces,
+            centroids: self.centroids,
             projected: self.projected.as_slice(),
             view: self.view,
             cull_backfaces: self.cull_backfaces,
@@ -151,6 +144,8 @@ pub(crate) struct Assembly<'a> {
     pub(crate) mesh: &'a Mesh,
     /// One unit normal per polygon, `None` where its area is zero.
     pub(crate) faces: &'a [Option<Vec3>],
+    /// Each polygon's centroid.
+    pub(crate) centroids: &'a [Vec3],
     /// The vertex stage's output, one per mesh position.
     pub(crate) projected: &'a [Projected],
     pub(crate) view: View,
@@ -164,6 +159,10 @@ impl PolygonSource for Assembly<'_> {
 
     fn faces(&self) -> &[Option<Vec3>] {
         self.faces
+    }
+
+    fn centroids(&self) -> &[Vec3] {
+        self.centroids
     }
 
     /// The walk (see the module's notes), inlined into the rasterizer's
@@ -491,6 +490,7 @@ mod tests {
                     let assembly = Assembly {
                         mesh: &mesh,
                         faces: &faces,
+                        centroids: &[],
                         projected: &projected,
                         view,
                         cull_backfaces: cull,

@@ -162,10 +162,9 @@ impl Renderer {
             Rasterizer::Tiled => self
                 .tiled
                 .render(&mut frame, scene, options, lighting, image),
-            Rasterizer::Scanline => {
-                let scanline = &mut self.scanline;
-                scanline.render(&mut frame, scene, options, lighting, image)
-            }
+            Rasterizer::Scanline => self
+                .scanline
+                .render(&mut frame, scene, options, lighting, image),
         })
     }
 
@@ -278,10 +277,9 @@ impl Renderer {
         let mut frame = self.geometry.frame(scene, &options);
         Ok(match options.rasterizer {
             Rasterizer::Tiled => self.tiled.coverage(&mut frame, scene, &options, &lighting),
-            Rasterizer::Scanline => {
-                let scanline = &mut self.scanline;
-                scanline.coverage(&mut frame, scene, &options, &lighting)
-            }
+            Rasterizer::Scanline => self
+                .scanline
+                .coverage(&mut frame, scene, &options, &lighting),
         })
     }
 }

@@ -40,6 +40,10 @@ pub(crate) trait PolygonSource: Sync {
     /// shading's normal).
     fn faces(&self) -> &[Option<Vec3>];
 
+    /// Each polygon's centroid, the mean of its corners' positions (the
+    /// point flat shading lights).
+    fn centroids(&self) -> &[Vec3];
+
     /// Hands the visible ones of polygons `faces`, in order, to `sink`,
     /// counting in `stats` the degenerate, invisible, culled and rasterized
     /// ones. Inlined into the rasterizer's loop (implementations are

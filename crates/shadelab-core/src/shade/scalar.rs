@@ -34,7 +34,7 @@ pub(crate) trait Method<const N: usize> {
 }
 
 /// What the methods read of a scene: the mesh, its corner normals, its
-/// face normals (`None`: degenerate) and the frame's lighting.
+/// face normals (`None`: degenerate) and centroids, and the frame's lighting.
 pub(crate) struct SceneRefs<'a> {
     /// The model.
     pub mesh: &'a Mesh,
@@ -42,6 +42,8 @@ pub(crate) struct SceneRefs<'a> {
     pub normals: &'a CornerNormals,
     /// One normal per polygon, `None` where its area is zero.
     pub faces: &'a [Option<Vec3>],
+    /// Each polygon's centroid (flat shading's lit point).
+    pub centroids: &'a [Vec3],
     /// The frame's lighting.
     pub lighting: Lighting,
 }
@@ -105,13 +107,8 @@ impl Method<0> for FlatMethod<'_> {
         []
     }
 
-    fn begin_polygon(&mut self, face: usize, corners: Range<usize>, back: bool) {
-        let mesh = self.scene.mesh;
-        let count = corners.len() as f32;
-        let centroid = corners
-            .map(|c| mesh.positions()[mesh.corners()[c] as usize])
-            .sum::<Vec3>()
-            / count;
+    fn begin_polygon(&mut self, face: usize, _: Range<usize>, back: bool) {
+        let centroid = self.scene.centroids[face];
         let normal = self.scene.faces[face].unwrap_or(Vec3::Z);
         let normal = if back { -normal } else { normal };
         self.evaluations += 1;

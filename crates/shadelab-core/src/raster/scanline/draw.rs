@@ -180,6 +180,7 @@ pub(crate) fn draw<P: PolygonSource>(
         mesh: &scene.mesh,
         normals: &scene.normals,
         faces: polygons.faces(),
+        centroids: polygons.centroids(),
         lighting: lighting.clone(),
     };
     let draw = Draw {

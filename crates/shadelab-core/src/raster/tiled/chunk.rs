@@ -59,6 +59,8 @@ pub(super) struct Frame<'a> {
     /// colours in the triangles).
     pub(super) method: Option<Shading>,
     pub(super) corner_vertex: &'a [u32],
+    /// Each polygon's centroid (flat shading's lit point).
+    pub(super) centroids: &'a [Vec3],
     pub(super) phong: &'a PhongShader,
     pub(super) simd: SimdLevel,
     pub(super) lit: &'a [[f32; 3]],
@@ -137,8 +139,8 @@ impl Frame<'_> {
             let normals = &self.scene.normals;
             prefetch(&normals.normals[normals.corner[corner] as usize]);
         }
-        // Phong's attributes and flat's centroid read the position.
-        if A == 0 || A >= 6 {
+        // Phong's attributes read the position.
+        if A >= 6 {
             prefetch(&self.scene.mesh.positions()[vertex as usize]);
         }
     }
@@ -184,10 +186,10 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
     #[inline(always)]
     fn triangle(
         &mut self,
-        _: usize,
+        face: usize,
         normal: Vec3,
         first_corner: usize,
-        vertices: [u32; 3],
+        _: [u32; 3],
         p: &[Projected; 3],
     ) {
         let frame = self.frame;
@@ -201,13 +203,8 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
             return;
         }
         if A == 0 || A == ALL_ATTRS {
-            // As `flat_surface`, with the triangle's corners at hand.
-            let positions = frame.scene.mesh.positions();
-            let c = (Vec3::ZERO
-                + positions[vertices[0] as usize]
-                + positions[vertices[1] as usize]
-                + positions[vertices[2] as usize])
-                / 3.0;
+            // As `flat_surface`, for a front face.
+            let c = frame.centroids[face];
             self.flat_surfaces
                 .push([normal.x, normal.y, normal.z, c.x, c.y, c.z]);
             t.color = (self.flat_surfaces.len() - 1) as u32;
@@ -266,15 +263,8 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
 impl<const A: usize> Setup<'_, '_, A> {
     /// Queues a polygon for flat lighting; returns its index.
     fn flat_surface(&mut self, face: usize, normal: Vec3, back: bool) -> u32 {
-        let mesh = &self.frame.scene.mesh;
-        let polygon = mesh.polygon(face);
-        let centroid = polygon
-            .iter()
-            .map(|&i| mesh.positions()[i as usize])
-            .sum::<Vec3>()
-            / polygon.len() as f32;
         let n = if back { -normal } else { normal };
-        let p = centroid;
+        let p = self.frame.centroids[face];
         self.flat_surfaces.push([n.x, n.y, n.z, p.x, p.y, p.z]);
         (self.flat_surfaces.len() - 1) as u32
     }

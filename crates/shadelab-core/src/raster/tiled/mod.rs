@@ -482,6 +482,7 @@ impl TiledRasterizer {
             options,
             method,
             corner_vertex: &self.vertices.corner_vertex,
+            centroids: polygons.centroids(),
             phong: &self.phong,
             simd: self.simd.without_avx512(),
             lit: &self.lit,
