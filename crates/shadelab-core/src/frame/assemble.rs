@@ -2,14 +2,14 @@
 //! polygons to clipped, window-space, counter-clockwise polygons with
 //! their attributes, handed to a rasterizer's [`PolygonSink`].
 //!
-//! The frame owns the geometry of a frame ([`Geometry`]: face normals, the
-//! vertex stage's output) and hands the rasterizer an [`Unprojected`], which the
-//! rasterizer knows only as a [`VertexStage`]: it runs the stage when it
-//! suits it (the tiled rasterizer beside its own per-vertex lighting) and
-//! gets an [`Assembly`], a [`PolygonSource`] whose polygons it walks, any
-//! run of consecutive ones at a time, into a sink of its choosing: the
-//! scanline rasterizer all of them into one, the tiled one a chunk per
-//! setup task. Every polygon of a frame takes this walk:
+//! The frame owns the geometry of a frame ([`Geometry`]: face normals and
+//! centroids, the vertex stage's output) and hands the rasterizer an
+//! [`Unprojected`], which the rasterizer knows only as a [`VertexStage`]:
+//! it runs the stage when it suits it (the tiled rasterizer beside its own
+//! per-vertex lighting) and gets an [`Assembly`], a [`PolygonSource`]
+//! whose polygons it walks, any run of consecutive ones at a time, into a
+//! sink of its choosing: the scanline rasterizer all of them into one, the
+//! tiled one a chunk per setup task. Every polygon of a frame takes this walk:
 //!
 //! 1. **Degenerate** polygons (no face normal) are counted and dropped.
 //! 2. **Facing** comes first, from the snapped positions of the vertex
