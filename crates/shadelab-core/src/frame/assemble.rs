@@ -231,7 +231,7 @@ impl Assembly<'_> {
         let area = if unclipped {
             window_area(self.projected, corners)
         } else {
-            self.project(face, false, scratch, sink);
+            self.project(face, false, false, scratch, sink);
             if scratch.window.len() < 3 {
                 0
             } else {
@@ -248,7 +248,7 @@ impl Assembly<'_> {
             return;
         }
         if back || unclipped {
-            self.project(face, back, scratch, sink);
+            self.project(face, back, unclipped, scratch, sink);
         }
         if back {
             scratch.window.reverse();
@@ -257,12 +257,14 @@ impl Assembly<'_> {
         sink.polygon(face, normal, back, &scratch.window);
     }
 
-    /// The polygon's window-space vertices in `scratch.window`, clipped,
-    /// with the attributes of its front (or back) side.
+    /// The polygon's window-space vertices in `scratch.window`, clipped
+    /// unless `unclipped` (every corner inside, as `polygon` found), with
+    /// the attributes of its front (or back) side.
     fn project<const N: usize, S: PolygonSink<N>>(
         &self,
         face: usize,
         back: bool,
+        unclipped: bool,
         scratch: &mut Scratch<N>,
         sink: &mut S,
     ) {
@@ -270,7 +272,7 @@ impl Assembly<'_> {
         let range = mesh.corner_range(face);
         let corners = &mesh.corners()[range.clone()];
         scratch.window.clear();
-        if corners.iter().all(|&v| self.projected[v as usize].inside()) {
+        if unclipped {
             for (c, &v) in range.zip(corners) {
                 let attrs = sink.corner(c, v, back);
                 scratch
