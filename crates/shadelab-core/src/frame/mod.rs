@@ -216,7 +216,7 @@ impl Renderer {
         mut images: [&mut Image; 3],
     ) -> Result<([RenderStats; 3], std::ops::Range<u32>), RenderError> {
         let height = options.height;
-        let aligned = |y: u32| y % ROW_ALIGN == 0;
+        let aligned = |y: u32| y.is_multiple_of(ROW_ALIGN);
         if rows.is_empty()
             || rows.end > height
             || !aligned(rows.start)

@@ -7,15 +7,18 @@
 //! point light, the common case, has its own shader with no loop over
 //! lights; any other light set goes through the general one.
 //!
+//! Phong's shaders light queued fragments 16 at a time ([`Simd::F16`]: one
+//! AVX-512 vector where the processor has it, else two of 8).
+//!
 //! Every shader computes what [`Lighting::eval`] computes, in f32 lanes, so
 //! colours agree with the scanline rasterizer within 1/255.
 
 // Loops over channels index several arrays at once.
 #![allow(clippy::needless_range_loop)]
 
-use super::lanes::{pack, unit_normal, LaneLight, PlainPoint, Surface, SurfaceLanes};
+use super::lanes::{pack, unit_normal, LaneLight, PlainPoint, Surface, SurfaceLanes, ToLanes};
 use super::model::Lighting;
-use crate::simd::{Simd, Vf, Vi};
+use crate::simd::{Lanes, Simd, Vf, Vi};
 
 /// The most attributes a method interpolates (Phong: normal and position).
 pub(crate) const MAX_ATTRS: usize = 6;
@@ -28,8 +31,8 @@ pub(crate) trait Shader: Sync {
     type Lanes<S: Simd>: Copy;
     /// Splats the constants, once per band.
     fn lanes<S: Simd>(&self, s: S) -> Self::Lanes<S>;
-    /// Whether fragments are queued and shaded 8 at a time with
-    /// [`Shader::light`] (worth it when shading costs far more than
+    /// Whether fragments are queued and shaded 16 at a time with
+    /// [`Shader::light_queue`] (worth it when shading costs far more than
     /// queueing: Phong), rather than block by block with [`Shader::shade`].
     const DEFERRED: bool = false;
     /// Whether the band also writes flat's and Gouraud's colours of the
@@ -37,26 +40,19 @@ pub(crate) trait Shader: Sync {
     /// with: the three methods in one walk of each triangle
     /// ([`AllMethods`]).
     const ALL_METHODS: bool = false;
-    /// Colours of 8 queued fragments whose attributes are final (normals
-    /// already turned for back faces). Only called when `DEFERRED`.
-    fn light<S: Simd>(&self, lanes: &Self::Lanes<S>, s: S, attrs: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        let _ = (lanes, attrs);
-        Vi::splat(s, 0)
-    }
-    /// [`Shader::light`] of `8·G` queued fragments, as `G` blocks of 8.
-    #[inline(always)]
-    fn light_groups<S: Simd, const G: usize>(
+    /// Colours of `16·G` queued fragments whose attributes are final
+    /// (normals already turned for back faces), packed into `colors`:
+    /// attribute `k` of fragments `16·g..16·g + 16` is `attrs[g][k]`. The
+    /// `G` groups are lit together, so that their long dependency chains
+    /// overlap. Only called when `DEFERRED`.
+    fn light_queue<S: Simd, const G: usize>(
         &self,
         lanes: &Self::Lanes<S>,
         s: S,
-        a: [&[Vf<S>; MAX_ATTRS]; G],
-    ) -> [Vi<S>; G] {
-        // A loop, not `array::from_fn`: see `Surface::radiance`.
-        let mut out = [Vi::splat(s, 0); G];
-        for g in 0..G {
-            out[g] = self.light(lanes, s, a[g]);
-        }
-        out
+        attrs: &[[S::F16; MAX_ATTRS]; G],
+        colors: &mut [[i32; 16]; G],
+    ) {
+        let _ = (lanes, s, attrs, colors);
     }
     /// Colours of 8 fragments of one triangle, packed `r | g << 8 | b << 16`:
     /// `color` is the triangle's flat colour (packed), `flip` −1 for a back
@@ -131,20 +127,20 @@ impl PhongShader {
         };
     }
 
-    /// The reflection model at 8 points `a[3..6]` with normals `a[0..3]`
-    /// (normalized here), as packed colours.
+    /// The reflection model at the points `a[3..6]` with normals `a[0..3]`
+    /// (normalized here), packed into `dst` (as many as the lanes).
     #[inline(always)]
-    pub fn light<S: Simd>(&self, s: S, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        pack(self.radiance(s, a, true))
+    pub fn light<V: Lanes>(&self, a: &[V; MAX_ATTRS], dst: &mut [i32]) {
+        pack(self.radiance(a, true), dst)
     }
 
-    /// The reflected light per channel, unclamped, at 8 points `a[3..6]`
+    /// The reflected light per channel, unclamped, at the points `a[3..6]`
     /// with normals `a[0..3]` (normalized here); without the specular term
     /// unless `specular` (as [`Lighting::eval`] with its `Terms`).
     #[inline(always)]
-    pub fn radiance<S: Simd>(&self, s: S, a: &[Vf<S>; MAX_ATTRS], specular: bool) -> [Vf<S>; 3] {
+    pub fn radiance<V: Lanes>(&self, a: &[V; MAX_ATTRS], specular: bool) -> [V; 3] {
         let n = unit_normal([a[0], a[1], a[2]], 1.0);
-        let k = self.surface.lanes(s);
+        let k = self.surface.lanes(a[0]);
         let [out] = (self.surface).radiance(&k, &self.lights, [n], [[a[3], a[4], a[5]]], specular);
         out
     }
@@ -157,16 +153,51 @@ impl Shader for PhongShader {
     #[inline(always)]
     fn lanes<S: Simd>(&self, _: S) {}
     #[inline(always)]
-    fn light<S: Simd>(&self, _: &(), s: S, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        PhongShader::light(self, s, a)
+    fn light_queue<S: Simd, const G: usize>(
+        &self,
+        _: &(),
+        _: S,
+        a: &[[S::F16; MAX_ATTRS]; G],
+        colors: &mut [[i32; 16]; G],
+    ) {
+        let k = self.surface.lanes(a[0][0]);
+        let out = lit_groups(&self.surface, &k, &self.lights, 1.0, a.each_ref());
+        for g in 0..G {
+            pack(out[g], &mut colors[g]);
+        }
     }
     #[inline(always)]
     fn shade<S: Simd>(&self, _: &(), s: S, _: u32, flip: f32, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
+        let mut colors = [0; 8];
         self.light(
-            s,
             &[a[0] * flip, a[1] * flip, a[2] * flip, a[3], a[4], a[5]],
-        )
+            &mut colors,
+        );
+        Vi(s.i_load(&colors), s)
     }
+}
+
+/// The reflected light of `G` groups of points `a[g][3..6]` with normals
+/// `a[g][0..3]` turned by `flip`: each step done for all of them before
+/// the next, so that their dependency chains (three square roots, the
+/// power's squarings) overlap in the processor instead of waiting one
+/// after the other.
+#[inline(always)]
+fn lit_groups<V: Lanes, L: ToLanes<V>, const G: usize>(
+    surface: &Surface,
+    k: &SurfaceLanes<V>,
+    lights: &[L],
+    flip: f32,
+    a: [&[V; MAX_ATTRS]; G],
+) -> [[V; 3]; G] {
+    // Loops, not closures: see `Surface::radiance`.
+    let (mut n, mut p) = ([[a[0][0]; 3]; G], [[a[0][0]; 3]; G]);
+    for g in 0..G {
+        let a = a[g];
+        n[g] = unit_normal([a[0], a[1], a[2]], flip);
+        p[g] = [a[3], a[4], a[5]];
+    }
+    surface.radiance(k, lights, n, p, true)
 }
 
 /// Phong shading lit by exactly one point light without attenuation, the
@@ -178,82 +209,64 @@ pub(crate) struct OnePointLight {
     light: LaneLight,
 }
 
-/// [`OnePointLight`]'s constants in lanes.
+/// [`OnePointLight`]'s constants in lanes `V`.
 #[derive(Clone, Copy)]
-pub(crate) struct OneLightLanes<S: Simd> {
-    surface: SurfaceLanes<S>,
-    light: PlainPoint<S>,
+pub(crate) struct OneLightLanes<V> {
+    surface: SurfaceLanes<V>,
+    light: PlainPoint<V>,
 }
 
-impl Shader for OnePointLight {
-    const ATTRS: usize = 6;
-    const DEFERRED: bool = true;
-    type Lanes<S: Simd> = OneLightLanes<S>;
-
+impl OnePointLight {
+    /// The constants in lanes like `s`.
     #[inline(always)]
-    fn light<S: Simd>(&self, k: &OneLightLanes<S>, s: S, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        let [c] = self.lit_groups(k, s, 1.0, [a]);
-        c
-    }
-
-    #[inline(always)]
-    fn light_groups<S: Simd, const G: usize>(
-        &self,
-        k: &OneLightLanes<S>,
-        s: S,
-        a: [&[Vf<S>; MAX_ATTRS]; G],
-    ) -> [Vi<S>; G] {
-        self.lit_groups(k, s, 1.0, a)
-    }
-
-    #[inline(always)]
-    fn lanes<S: Simd>(&self, s: S) -> OneLightLanes<S> {
+    fn lanes_like<V: Lanes>(&self, s: V) -> OneLightLanes<V> {
         OneLightLanes {
             surface: self.surface.lanes(s),
             light: PlainPoint::new(&self.light, s),
         }
     }
+}
 
+impl Shader for OnePointLight {
+    const ATTRS: usize = 6;
+    const DEFERRED: bool = true;
+    type Lanes<S: Simd> = OneLightLanes<S::F16>;
+
+    #[inline(always)]
+    fn lanes<S: Simd>(&self, s: S) -> OneLightLanes<S::F16> {
+        self.lanes_like(s.f16_load(&[0.0; 16]))
+    }
+
+    #[inline(always)]
+    fn light_queue<S: Simd, const G: usize>(
+        &self,
+        k: &OneLightLanes<S::F16>,
+        _: S,
+        a: &[[S::F16; MAX_ATTRS]; G],
+        colors: &mut [[i32; 16]; G],
+    ) {
+        let out = lit_groups(&self.surface, &k.surface, &[k.light], 1.0, a.each_ref());
+        for g in 0..G {
+            pack(out[g], &mut colors[g]);
+        }
+    }
+
+    /// Not the hot path (the band queues Phong's fragments): the constants
+    /// are splatted into 8 lanes here.
     #[inline(always)]
     fn shade<S: Simd>(
         &self,
-        k: &OneLightLanes<S>,
+        _: &OneLightLanes<S::F16>,
         s: S,
         _: u32,
         flip: f32,
         a: &[Vf<S>; MAX_ATTRS],
     ) -> Vi<S> {
-        let [c] = self.lit_groups(k, s, flip, [a]);
-        c
-    }
-}
-
-impl OnePointLight {
-    /// The packed colours of `G` blocks at once, normals turned by `flip`:
-    /// each step done for all of them before the next, so the blocks'
-    /// dependency chains (three square roots, the power's squarings) overlap
-    /// in the processor instead of waiting one after the other.
-    #[inline(always)]
-    fn lit_groups<S: Simd, const G: usize>(
-        &self,
-        k: &OneLightLanes<S>,
-        s: S,
-        flip: f32,
-        a: [&[Vf<S>; MAX_ATTRS]; G],
-    ) -> [Vi<S>; G] {
-        let zero = Vf::splat(s, 0.0);
-        let (mut n, mut p) = ([[zero; 3]; G], [[zero; 3]; G]);
-        for g in 0..G {
-            let a = a[g];
-            n[g] = unit_normal([a[0], a[1], a[2]], flip);
-            p[g] = [a[3], a[4], a[5]];
-        }
-        let out = self.surface.radiance(&k.surface, &[k.light], n, p, true);
-        let mut colors = [Vi::splat(s, 0); G];
-        for g in 0..G {
-            colors[g] = pack(out[g]);
-        }
-        colors
+        let k = self.lanes_like(a[0]);
+        let [out] = lit_groups(&self.surface, &k.surface, &[k.light], flip, [a]);
+        let mut colors = [0; 8];
+        pack(out, &mut colors);
+        Vi(s.i_load(&colors), s)
     }
 }
 
@@ -275,18 +288,14 @@ impl<P: Shader> Shader for AllMethods<'_, P> {
     }
 
     #[inline(always)]
-    fn light<S: Simd>(&self, k: &P::Lanes<S>, s: S, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
-        self.0.light(k, s, a)
-    }
-
-    #[inline(always)]
-    fn light_groups<S: Simd, const G: usize>(
+    fn light_queue<S: Simd, const G: usize>(
         &self,
         k: &P::Lanes<S>,
         s: S,
-        a: [&[Vf<S>; MAX_ATTRS]; G],
-    ) -> [Vi<S>; G] {
-        self.0.light_groups(k, s, a)
+        a: &[[S::F16; MAX_ATTRS]; G],
+        colors: &mut [[i32; 16]; G],
+    ) {
+        self.0.light_queue(k, s, a, colors)
     }
 
     #[inline(always)]

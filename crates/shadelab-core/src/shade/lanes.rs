@@ -1,12 +1,15 @@
 //! The reflection model in SIMD lanes: `model.rs`'s [`Lighting::eval`] for
-//! 8 points at a time, or for `G` blocks of 8 whose dependency chains the
-//! processor overlaps.
+//! a vector of points at a time (8, or 16 for Phong's queue: see
+//! [`Lanes`]), or for `G` vectors whose dependency chains the processor
+//! overlaps.
 //!
 //! Written once: the tiled rasterizer's Phong shaders (one point light or
 //! any lights), its Gouraud vertex stage and its flat polygon stage all end
 //! in [`Surface::radiance`]. Constants are prepared once per frame
 //! ([`Surface`], [`LaneLight`]) and splatted into lanes once per band
-//! ([`SurfaceLanes`], [`LightLanes`]) or per call.
+//! ([`SurfaceLanes`], [`LightLanes`]) or per call. Generic over the
+//! lanes' width, so the one model serves the 8-lane blocks and the 16-lane
+//! groups, with the same operations in the same order.
 //!
 //! Agreement with the scalar model is within f32 rounding (and the
 //! polynomial power, about 1e-6 relative): checked by the tests at the end
@@ -20,7 +23,7 @@ use glam::Vec3;
 
 use super::model::Lighting;
 use crate::light::{Light, LightKind, Material, Specular, NO_ATTENUATION};
-use crate::simd::{pow_unit, pow_whole_groups, Simd, Vf, Vi};
+use crate::simd::{pow_whole_groups, Lanes};
 
 /// How `max(0, r·v)^p` is computed for the material's `p`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -47,9 +50,9 @@ pub(crate) struct Surface {
 
 /// [`Surface`]'s vectors in lanes.
 #[derive(Clone, Copy)]
-pub(crate) struct SurfaceLanes<S: Simd> {
-    ambient: [Vf<S>; 3],
-    eye: [Vf<S>; 3],
+pub(crate) struct SurfaceLanes<V> {
+    ambient: [V; 3],
+    eye: [V; 3],
 }
 
 /// One light prepared for the lanes.
@@ -69,19 +72,19 @@ pub(crate) struct LaneLight {
 
 /// [`LaneLight`] in lanes.
 #[derive(Clone, Copy)]
-pub(crate) struct LightLanes<S: Simd> {
+pub(crate) struct LightLanes<V> {
     /// A point light's position, or the unit vector towards a directional one.
-    at: [Vf<S>; 3],
+    at: [V; 3],
     point: bool,
-    diffuse: [Vf<S>; 3],
-    specular: [Vf<S>; 3],
-    attenuation: Option<[Vf<S>; 3]>,
+    diffuse: [V; 3],
+    specular: [V; 3],
+    attenuation: Option<[V; 3]>,
 }
 
-/// `v` in lanes.
+/// `v` in lanes like `like`.
 #[inline(always)]
-fn splat3<S: Simd>(s: S, v: Vec3) -> [Vf<S>; 3] {
-    [Vf::splat(s, v.x), Vf::splat(s, v.y), Vf::splat(s, v.z)]
+fn splat3<V: Lanes>(like: V, v: Vec3) -> [V; 3] {
+    splat_each(like, v.to_array())
 }
 
 impl LaneLight {
@@ -112,9 +115,9 @@ impl LaneLight {
         self.position.is_some() && self.attenuation.is_none()
     }
 
-    /// The light in lanes.
+    /// The light in lanes like `s`.
     #[inline(always)]
-    pub fn lanes<S: Simd>(&self, s: S) -> LightLanes<S> {
+    pub fn lanes<V: Lanes>(&self, s: V) -> LightLanes<V> {
         // No closure (`Option::map`): see `Surface::radiance`.
         #[allow(clippy::manual_map)]
         let attenuation = match self.attenuation {
@@ -151,9 +154,9 @@ impl Surface {
         }
     }
 
-    /// The vectors in lanes.
+    /// The vectors in lanes like `s`.
     #[inline(always)]
-    pub fn lanes<S: Simd>(&self, s: S) -> SurfaceLanes<S> {
+    pub fn lanes<V: Lanes>(&self, s: V) -> SurfaceLanes<V> {
         SurfaceLanes {
             ambient: splat_each(s, self.ambient),
             eye: splat3(s, self.eye),
@@ -162,12 +165,12 @@ impl Surface {
 
     /// `x^p` for `G` blocks at once.
     #[inline(always)]
-    fn power<S: Simd, const G: usize>(&self, mut x: [Vf<S>; G]) -> [Vf<S>; G] {
+    fn power<V: Lanes, const G: usize>(&self, mut x: [V; G]) -> [V; G] {
         match self.power {
             Power::Whole(p) => return pow_whole_groups(x, p),
             Power::Fraction => {
                 for x in &mut x {
-                    *x = pow_unit(*x, self.shininess);
+                    *x = x.pow_unit(self.shininess);
                 }
             }
             Power::Scalar => {
@@ -186,14 +189,14 @@ impl Surface {
     /// `n·l > 0` (`n·h` for Blinn's variant), each point light's terms divided
     /// by its attenuation when it has one.
     #[inline(always)]
-    pub fn radiance<S: Simd, L: ToLanes<S>, const G: usize>(
+    pub fn radiance<V: Lanes, L: ToLanes<V>, const G: usize>(
         &self,
-        k: &SurfaceLanes<S>,
+        k: &SurfaceLanes<V>,
         lights: &[L],
-        n: [[Vf<S>; 3]; G],
-        p: [[Vf<S>; 3]; G],
+        n: [[V; 3]; G],
+        p: [[V; 3]; G],
         specular: bool,
-    ) -> [[Vf<S>; 3]; G] {
+    ) -> [[V; 3]; G] {
         // Loops, not closures: a closure the compiler does not inline is
         // compiled without the backend's target features, and each lane
         // operation in it becomes a call.
@@ -204,7 +207,7 @@ impl Surface {
         }
         let mut out = [k.ambient; G];
         for light in lights {
-            let light = light.lanes(zero.1);
+            let light = light.lanes(zero);
             let attenuated = !L::PLAIN_POINT && light.attenuation.is_some();
             let mut l = [light.at; G];
             if L::PLAIN_POINT || light.point {
@@ -255,7 +258,7 @@ impl Surface {
                     if attenuated {
                         add = add * fade[g];
                     }
-                    out[g][c] = out[g][c] + Vf::select(lit, add, zero);
+                    out[g][c] = out[g][c] + V::select(lit, add, zero);
                 }
             }
         }
@@ -265,62 +268,58 @@ impl Surface {
 
 /// A light as [`Surface::radiance`] takes it: prepared ([`LaneLight`],
 /// splatted at each use) or already in lanes ([`LightLanes`]).
-pub(crate) trait ToLanes<S: Simd> {
+pub(crate) trait ToLanes<V> {
     /// Known to be a point light without attenuation, so that the model
     /// compiles with neither test (the common case: one such light).
     const PLAIN_POINT: bool = false;
-    /// The light in lanes.
-    fn lanes(&self, s: S) -> LightLanes<S>;
+    /// The light in lanes like `s`.
+    fn lanes(&self, s: V) -> LightLanes<V>;
 }
 
-impl<S: Simd> ToLanes<S> for LaneLight {
+impl<V: Lanes> ToLanes<V> for LaneLight {
     #[inline(always)]
-    fn lanes(&self, s: S) -> LightLanes<S> {
+    fn lanes(&self, s: V) -> LightLanes<V> {
         LaneLight::lanes(self, s)
     }
 }
 
 /// A point light without attenuation, in lanes (see [`ToLanes::PLAIN_POINT`]).
 #[derive(Clone, Copy)]
-pub(crate) struct PlainPoint<S: Simd>(LightLanes<S>);
+pub(crate) struct PlainPoint<V>(LightLanes<V>);
 
-impl<S: Simd> PlainPoint<S> {
-    /// `light` in lanes, which must be a point light without attenuation.
+impl<V: Lanes> PlainPoint<V> {
+    /// `light` in lanes like `s`, which must be a point light without
+    /// attenuation.
     #[inline(always)]
-    pub fn new(light: &LaneLight, s: S) -> PlainPoint<S> {
+    pub fn new(light: &LaneLight, s: V) -> PlainPoint<V> {
         debug_assert!(light.is_point() && light.attenuation.is_none());
         PlainPoint(light.lanes(s))
     }
 }
 
-impl<S: Simd> ToLanes<S> for PlainPoint<S> {
+impl<V: Copy> ToLanes<V> for PlainPoint<V> {
     const PLAIN_POINT: bool = true;
     #[inline(always)]
-    fn lanes(&self, _: S) -> LightLanes<S> {
+    fn lanes(&self, _: V) -> LightLanes<V> {
         self.0
     }
 }
 
-/// Each of three numbers in lanes.
+/// Each of three numbers in lanes like `s`.
 #[inline(always)]
-fn splat_each<S: Simd>(s: S, c: [f32; 3]) -> [Vf<S>; 3] {
-    [Vf::splat(s, c[0]), Vf::splat(s, c[1]), Vf::splat(s, c[2])]
+fn splat_each<V: Lanes>(s: V, c: [f32; 3]) -> [V; 3] {
+    [s.splat_like(c[0]), s.splat_like(c[1]), s.splat_like(c[2])]
 }
 
 /// `x^p` lane by lane with `powf`, for exponents outside `pow_unit`'s range.
 #[cold]
-fn power_scalar<S: Simd>(x: Vf<S>, p: f32) -> Vf<S> {
-    let mut lanes = [0.0; 8];
-    x.store(&mut lanes);
-    for v in &mut lanes {
-        *v = v.powf(p);
-    }
-    Vf::load(x.1, &lanes)
+fn power_scalar<V: Lanes>(x: V, p: f32) -> V {
+    x.map(|v| v.powf(p))
 }
 
 /// `a·b` over three lanes.
 #[inline(always)]
-fn dot<S: Simd>(a: &[Vf<S>; 3], b: &[Vf<S>; 3]) -> Vf<S> {
+fn dot<V: Lanes>(a: &[V; 3], b: &[V; 3]) -> V {
     a[0].mul_add(b[0], a[1].mul_add(b[1], a[2] * b[2]))
 }
 
@@ -330,21 +329,21 @@ fn dot<S: Simd>(a: &[Vf<S>; 3], b: &[Vf<S>; 3]) -> Vf<S> {
 /// and a NaN specular cosine is taken to 0 by `max(cos, 0)` (the second
 /// operand wins on NaN in both backends).
 #[inline(always)]
-fn normalize<S: Simd>(v: [Vf<S>; 3]) -> [Vf<S>; 3] {
+fn normalize<V: Lanes>(v: [V; 3]) -> [V; 3] {
     unit_normal(v, 1.0)
 }
 
 /// The interpolated normal `v` re-normalized and, with `flip` = −1 (a back
 /// face drawn), turned: `flip · v / |v|`.
 #[inline(always)]
-pub(crate) fn unit_normal<S: Simd>(v: [Vf<S>; 3], flip: f32) -> [Vf<S>; 3] {
+pub(crate) fn unit_normal<V: Lanes>(v: [V; 3], flip: f32) -> [V; 3] {
     let scale = dot(&v, &v).rsqrt() * flip;
     [v[0] * scale, v[1] * scale, v[2] * scale]
 }
 
 /// The unit vectors from points `p` towards `q` (NaN where they coincide).
 #[inline(always)]
-fn towards<S: Simd>(q: &[Vf<S>; 3], p: &[Vf<S>; 3]) -> [Vf<S>; 3] {
+fn towards<V: Lanes>(q: &[V; 3], p: &[V; 3]) -> [V; 3] {
     normalize([q[0] - p[0], q[1] - p[1], q[2] - p[2]])
 }
 
@@ -354,16 +353,17 @@ fn towards<S: Simd>(q: &[Vf<S>; 3], p: &[Vf<S>; 3]) -> [Vf<S>; 3] {
 /// value is `255·c + 0.5` of its interpolated colour `c`, as [`pack`] would
 /// round it.
 #[inline(always)]
-pub(crate) fn byte_units<S: Simd>(c: Vf<S>) -> Vf<S> {
+pub(crate) fn byte_units<V: Lanes>(c: V) -> V {
     c.mul_add(c.splat_like(255.0), c.splat_like(0.5))
 }
 
 /// Colours in [0, 1] (clamped) to packed bytes `r | g << 8 | b << 16`,
-/// rounding as [`crate::Rgb8::from_rgb`]: `255·c + 0.5` truncated, which
-/// for `c` in [0, 1] is the same arithmetic, and saturates as the clamp would.
+/// stored into `dst` (as many as the lanes), rounding as
+/// [`crate::Rgb8::from_rgb`]: `255·c + 0.5` truncated, which for `c` in
+/// [0, 1] is the same arithmetic, and saturates as the clamp would.
 #[inline(always)]
-pub(crate) fn pack<S: Simd>([r, g, b]: [Vf<S>; 3]) -> Vi<S> {
-    Vf::to_bytes(byte_units(r), byte_units(g), byte_units(b))
+pub(crate) fn pack<V: Lanes>([r, g, b]: [V; 3], dst: &mut [i32]) {
+    V::store_bytes(byte_units(r), byte_units(g), byte_units(b), dst)
 }
 
 #[cfg(test)]
@@ -373,7 +373,7 @@ mod tests {
     use super::*;
     use crate::color::Rgb;
     use crate::shade::Terms;
-    use crate::simd::{dispatch, Kernel, SimdLevel};
+    use crate::simd::{dispatch, Kernel, Simd, SimdLevel, Vf};
 
     /// Random-looking but fixed lightings, points and normals.
     fn lightings() -> Vec<Lighting> {
@@ -431,15 +431,13 @@ mod tests {
             let lights: Vec<LaneLight> = (self.lighting.lights.iter())
                 .map(|l| LaneLight::of(l, &self.lighting.material))
                 .collect();
-            let k = surface.lanes(s);
+            let k = surface.lanes(Vf::splat(s, 0.0));
+            let wide = surface.lanes(s.f16_load(&[0.0; 16]));
             for block in 0..16 {
-                let lane = |i: usize, f: &dyn Fn(f32) -> f32| {
-                    let mut v = [0.0; 8];
-                    for (j, v) in v.iter_mut().enumerate() {
-                        *v = f((block * 8 + j) as f32 * 0.37 + i as f32);
-                    }
-                    Vf::load(s, &v)
+                let values = |i: usize, f: &dyn Fn(f32) -> f32| -> [f32; 8] {
+                    std::array::from_fn(|j| f((block * 8 + j) as f32 * 0.37 + i as f32))
                 };
+                let lane = |i: usize, f: &dyn Fn(f32) -> f32| Vf::load(s, &values(i, f));
                 let n = [
                     lane(0, &f32::sin),
                     lane(1, &f32::cos),
@@ -452,6 +450,35 @@ mod tests {
                 ];
                 let [got] =
                     surface.radiance(&k, &lights, [unit_normal(n, 1.0)], [p], self.specular);
+                // The same points twice in 16 lanes give the same bits.
+                let twice = |v: Vf<S>| {
+                    let mut both = [0.0; 16];
+                    v.store((&mut both[..8]).try_into().unwrap());
+                    v.store((&mut both[8..]).try_into().unwrap());
+                    s.f16_load(&both)
+                };
+                let [wide_got] = surface.radiance(
+                    &wide,
+                    &lights,
+                    [unit_normal(n.map(twice), 1.0)],
+                    [p.map(twice)],
+                    self.specular,
+                );
+                for c in 0..3 {
+                    let (mut narrow, mut wide) = ([0f32; 8], [0f32; 16]);
+                    got[c].store(&mut narrow);
+                    wide_got[c].store_to(&mut wide);
+                    let bits = |v: &[f32]| v.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&wide[..8]), bits(&narrow), "channel {c}");
+                    assert_eq!(bits(&wide[8..]), bits(&narrow), "channel {c}");
+                }
+                let (mut packed, mut wide_packed) = ([0; 8], [0; 16]);
+                pack(got, &mut packed);
+                pack(wide_got, &mut wide_packed);
+                assert_eq!(
+                    (&wide_packed[..8], &wide_packed[8..]),
+                    (&packed[..], &packed[..])
+                );
                 let (mut nv, mut pv, mut gv) = ([[0.0; 8]; 3], [[0.0; 8]; 3], [[0.0; 8]; 3]);
                 for c in 0..3 {
                     n[c].store(&mut nv[c]);

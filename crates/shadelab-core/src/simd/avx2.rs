@@ -1,41 +1,67 @@
 //! The AVX2 backend: one AVX2/FMA instruction per lane operation.
 
 use std::arch::x86_64::*;
+use std::marker::PhantomData;
 
-use super::Simd;
+use super::{Pair, Simd, Vf};
 
 /// The AVX2 backend; a value proves the CPU has AVX2 and FMA (and
-/// POPCNT, BMI1 and BMI2, which every AVX2 processor has).
+/// POPCNT, BMI1 and BMI2, which every AVX2 processor has), and whatever
+/// its lighting lanes `W` need.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Avx2(());
+pub(crate) struct Avx2<W: Width = Ymm>(PhantomData<W>);
 
-impl Avx2 {
-    pub fn new() -> Option<Avx2> {
+/// What [`Simd::F16`] is for an [`Avx2`] backend: the one thing in which
+/// its AVX-512 build ([`super::avx512::Zmm`]) differs from its AVX2 one.
+pub(crate) trait Width: Copy + Send + Sync + 'static {
+    /// The 16 lanes.
+    type F16: super::Lanes;
+    /// Whether the CPU has what the lanes need (beyond AVX2).
+    fn supported() -> bool;
+    /// 16 lanes from memory.
+    fn load(s: Avx2<Self>, src: &[f32; 16]) -> Self::F16;
+}
+
+/// Lighting in two 256-bit vectors: plain AVX2.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Ymm;
+
+impl Width for Ymm {
+    type F16 = Pair<Vf<Avx2<Ymm>>>;
+    fn supported() -> bool {
+        true
+    }
+    #[inline(always)]
+    fn load(s: Avx2<Ymm>, src: &[f32; 16]) -> Self::F16 {
+        Pair::load(s, src)
+    }
+}
+
+impl<W: Width> Avx2<W> {
+    pub fn new() -> Option<Avx2<W>> {
         (std::is_x86_feature_detected!("avx2")
             && std::is_x86_feature_detected!("fma")
             && std::is_x86_feature_detected!("popcnt")
             && std::is_x86_feature_detected!("bmi1")
-            && std::is_x86_feature_detected!("bmi2"))
-        .then_some(Avx2(()))
+            && std::is_x86_feature_detected!("bmi2")
+            && W::supported())
+        .then_some(Avx2(PhantomData))
     }
-}
-
-/// Whether the CPU also has AVX-512 F, VL, BW and DQ, for
-/// [`super::SimdLevel::Avx512`] (the AVX2 lanes compiled with them).
-pub(crate) fn has_avx512() -> bool {
-    std::is_x86_feature_detected!("avx512f")
-        && std::is_x86_feature_detected!("avx512vl")
-        && std::is_x86_feature_detected!("avx512bw")
-        && std::is_x86_feature_detected!("avx512dq")
 }
 
 // Every method below calls AVX/AVX2 intrinsics. SAFETY (for each
 // `unsafe` block in this impl): `self` is an `Avx2`, which only
 // `Avx2::new` creates after checking that the CPU has AVX2 and FMA;
 // loads and stores go through references to exactly 8 lanes.
-impl Simd for Avx2 {
+impl<W: Width> Simd for Avx2<W> {
     type F = __m256;
     type I = __m256i;
+    type F16 = W::F16;
+
+    #[inline(always)]
+    fn f16_load(self, src: &[f32; 16]) -> W::F16 {
+        W::load(self, src)
+    }
 
     #[inline(always)]
     fn f_splat(self, v: f32) -> __m256 {

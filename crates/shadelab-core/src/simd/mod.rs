@@ -21,14 +21,17 @@
 //! `#[target_feature(enable = "avx2,fma")]` function, so that the inlined
 //! intrinsics compile to VEX code. Where the CPU also has AVX-512 (F, VL,
 //! BW, DQ), the same AVX2 backend is compiled a second time with those
-//! features enabled ([`SimdLevel::Avx512`]): the lanes stay 8 wide, but the
-//! compiler gets 32 vector registers instead of 16 (the inner loops spilled
-//! plane values to the stack), mask registers for compares and blends, and
-//! three-operand logic. The intrinsics are the same, so the results are
-//! bit for bit those of [`SimdLevel::Avx2`] (a test checks it). The tiled
-//! rasterizer uses that build for Phong's pixels only: its flat and
-//! Gouraud blocks and its per-vertex and per-triangle work run the AVX2
-//! build, which was faster there (`SimdLevel::without_avx512`).
+//! features enabled ([`SimdLevel::Avx512`]): the blocks stay 8 wide, but
+//! the compiler gets 32 vector registers instead of 16 (the inner loops
+//! spilled plane values to the stack), mask registers for compares and
+//! blends, and three-operand logic; and Phong's queued fragments are lit
+//! 16 at a time in 512-bit registers ([`Simd::F16`], `avx512.rs`), which
+//! other backends do as two vectors of 8 (`wide.rs`). Each operation is
+//! the same IEEE operation on more lanes, so the results are bit for bit
+//! those of [`SimdLevel::Avx2`] (tests check it). The tiled rasterizer uses
+//! that build for Phong's pixels only: its flat and Gouraud blocks and its
+//! per-vertex and per-triangle work run the AVX2 build, which was faster
+//! there (`SimdLevel::without_avx512`).
 //!
 //! All backends compute in IEEE single precision; the x86 ones differ from
 //! the portable one in the last bits only, where AVX2 fuses
@@ -39,13 +42,17 @@
 
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+#[cfg(target_arch = "x86_64")]
+mod avx512;
 mod portable;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 mod wasm128;
+mod wide;
 
 use std::ops::{Add, BitAnd, BitOr, Mul, Sub};
 
 pub(crate) use self::portable::Portable;
+pub(crate) use self::wide::{Lanes, Pair};
 
 /// Which instruction set the tiled rasterizer's inner loops use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -105,9 +112,9 @@ impl SimdLevel {
         match self {
             SimdLevel::Portable => true,
             #[cfg(target_arch = "x86_64")]
-            SimdLevel::Avx2 => avx2::Avx2::new().is_some(),
+            SimdLevel::Avx2 => avx2::Avx2::<avx2::Ymm>::new().is_some(),
             #[cfg(target_arch = "x86_64")]
-            SimdLevel::Avx512 => avx2::Avx2::new().is_some() && avx2::has_avx512(),
+            SimdLevel::Avx512 => avx2::Avx2::<avx512::Zmm>::new().is_some(),
             #[cfg(not(target_arch = "x86_64"))]
             SimdLevel::Avx2 | SimdLevel::Avx512 => false,
             SimdLevel::Simd128 => cfg!(all(target_arch = "wasm32", target_feature = "simd128")),
@@ -128,25 +135,25 @@ pub(crate) trait Kernel {
 pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, kernel: K) -> K::Output {
     #[cfg(target_arch = "x86_64")]
     {
+        use self::{avx2::Avx2, avx512::Zmm};
         #[target_feature(enable = "avx2,fma,popcnt,bmi1,bmi2")]
-        unsafe fn with_avx2<K: Kernel>(kernel: K, simd: avx2::Avx2) -> K::Output {
+        unsafe fn with_avx2<K: Kernel>(kernel: K, simd: Avx2) -> K::Output {
             kernel.run(simd)
         }
         #[target_feature(enable = "avx2,fma,popcnt,bmi1,bmi2,avx512f,avx512vl,avx512bw,avx512dq")]
-        unsafe fn with_avx512<K: Kernel>(kernel: K, simd: avx2::Avx2) -> K::Output {
+        unsafe fn with_avx512<K: Kernel>(kernel: K, simd: Avx2<Zmm>) -> K::Output {
             kernel.run(simd)
         }
         if level == SimdLevel::Avx512 {
-            if let (Some(simd), true) = (avx2::Avx2::new(), avx2::has_avx512()) {
-                // SAFETY: the CPU has AVX2, FMA, POPCNT, BMI1 and BMI2
-                // (`Avx2::new` succeeded) and AVX-512 F, VL, BW and DQ
-                // (`has_avx512`), the only requirement of a `target_feature`
-                // function.
+            if let Some(simd) = Avx2::<Zmm>::new() {
+                // SAFETY: `Avx2::<Zmm>::new` succeeded, so the CPU has AVX2,
+                // FMA, POPCNT, BMI1, BMI2 and AVX-512 F, VL, BW and DQ, the
+                // only requirement of a `target_feature` function.
                 return unsafe { with_avx512(kernel, simd) };
             }
         }
         if level == SimdLevel::Avx2 || level == SimdLevel::Avx512 {
-            if let Some(simd) = avx2::Avx2::new() {
+            if let Some(simd) = Avx2::new() {
                 // SAFETY: `Avx2::new` succeeded, so the CPU has AVX2, FMA,
                 // POPCNT, BMI1 and BMI2, the only requirement of a
                 // `target_feature` function.
@@ -253,6 +260,13 @@ pub(crate) trait Simd: Copy + Send + Sync {
 
     /// The low three bytes of each lane, packed: 8 RGB pixels.
     fn i_store_rgb(self, v: Self::I, dst: &mut [u8; 24]);
+
+    /// 16 lanes of `f32` for lighting Phong's queued fragments: one
+    /// AVX-512 vector ([`SimdLevel::Avx512`]) or a [`Pair`] of this
+    /// backend's 8 (see `wide.rs`).
+    type F16: Lanes;
+    /// 16 lanes from memory.
+    fn f16_load(self, src: &[f32; 16]) -> Self::F16;
 }
 
 /// 8 × f32 with operators, for backend `S`.
@@ -281,48 +295,12 @@ impl<S: Simd> Vf<S> {
         self.1.f_store(self.0, dst)
     }
     #[inline(always)]
-    pub fn splat_like(self, v: f32) -> Self {
-        Vf::splat(self.1, v)
-    }
-    /// `self·m + a`, fused where the backend can.
-    #[inline(always)]
-    pub fn mul_add(self, m: Self, a: Self) -> Self {
-        Vf(self.1.f_mul_add(self.0, m.0, a.0), self.1)
-    }
-    #[inline(always)]
-    pub fn min(self, o: Self) -> Self {
-        Vf(self.1.f_min(self.0, o.0), self.1)
-    }
-    #[inline(always)]
-    pub fn max(self, o: Self) -> Self {
-        Vf(self.1.f_max(self.0, o.0), self.1)
-    }
-    /// `1 / √self`, see [`Simd::f_rsqrt`].
-    #[inline(always)]
-    pub fn rsqrt(self) -> Self {
-        Vf(self.1.f_rsqrt(self.0), self.1)
-    }
-    /// `1 / self`, see [`Simd::f_recip`].
-    #[inline(always)]
-    pub fn recip(self) -> Self {
-        Vf(self.1.f_recip(self.0), self.1)
-    }
-    #[inline(always)]
     pub fn floor(self) -> Self {
         Vf(self.1.f_floor(self.0), self.1)
     }
     #[inline(always)]
     pub fn lt(self, o: Self) -> Vi<S> {
         Vi(self.1.f_lt(self.0, o.0), self.1)
-    }
-    #[inline(always)]
-    pub fn gt(self, o: Self) -> Vi<S> {
-        Vi(self.1.f_gt(self.0, o.0), self.1)
-    }
-    /// Lanes of `yes` where `mask` is set, of `no` elsewhere.
-    #[inline(always)]
-    pub fn select(mask: Vi<S>, yes: Self, no: Self) -> Self {
-        Vf(yes.1.f_select(mask.0, yes.0, no.0), yes.1)
     }
     /// The lanes set in `bits`, packed to the front.
     #[inline(always)]
@@ -441,7 +419,7 @@ impl<S: Simd> Mul<f32> for Vf<S> {
 /// for `G` vectors at once, step by step, so that their chains of squarings
 /// overlap.
 #[inline(always)]
-pub(crate) fn pow_whole_groups<S: Simd, const G: usize>(x: [Vf<S>; G], p: u32) -> [Vf<S>; G] {
+pub(crate) fn pow_whole_groups<V: Lanes, const G: usize>(x: [V; G], p: u32) -> [V; G] {
     let k = p.trailing_zeros();
     let mut m = p >> k >> 1;
     let mut result = x;

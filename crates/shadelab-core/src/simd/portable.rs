@@ -1,6 +1,6 @@
 //! The portable backend: arrays of 8 and loops, plain safe Rust.
 
-use super::Simd;
+use super::{Pair, Simd, Vf};
 
 /// For each 8-bit mask, the indices of its set lanes in order, then zeros:
 /// the permutation that packs the selected lanes to the front.
@@ -38,6 +38,12 @@ macro_rules! lanes {
 impl Simd for Portable {
     type F = [f32; 8];
     type I = [i32; 8];
+
+    type F16 = Pair<Vf<Self>>;
+    #[inline(always)]
+    fn f16_load(self, src: &[f32; 16]) -> Pair<Vf<Self>> {
+        Pair::load(self, src)
+    }
 
     #[inline(always)]
     fn f_splat(self, v: f32) -> [f32; 8] {

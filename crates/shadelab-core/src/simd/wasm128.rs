@@ -13,7 +13,7 @@
 use std::arch::wasm32::*;
 
 use super::portable::COMPRESS;
-use super::Simd;
+use super::{Pair, Simd, Vf};
 
 /// The `simd128` backend (WebAssembly built with `+simd128` only).
 #[derive(Debug, Clone, Copy)]
@@ -65,6 +65,12 @@ macro_rules! pair {
 impl Simd for Wasm128 {
     type F = [v128; 2];
     type I = [v128; 2];
+
+    type F16 = Pair<Vf<Self>>;
+    #[inline(always)]
+    fn f16_load(self, src: &[f32; 16]) -> Pair<Vf<Self>> {
+        Pair::load(self, src)
+    }
 
     #[inline(always)]
     fn f_splat(self, v: f32) -> [v128; 2] {

@@ -339,7 +339,7 @@ impl Builder {
             }
             None => (0..count as u32).collect(),
         };
-        if indices.len() % 3 != 0 {
+        if !indices.len().is_multiple_of(3) {
             return Err(error(format!(
                 "{} indices: TRIANGLES needs a multiple of 3",
                 indices.len()

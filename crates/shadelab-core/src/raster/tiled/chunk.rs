@@ -375,8 +375,7 @@ impl Kernel for FlatKernel<'_> {
                 }
             }
             let attrs: [Vf<S>; MAX_ATTRS] = std::array::from_fn(|k| Vf::load(s, &lanes[k]));
-            let packed = self.shader.light(s, &attrs);
-            s.i_store(packed.0, colors.try_into().unwrap());
+            self.shader.light(&attrs, colors);
         }
     }
 }

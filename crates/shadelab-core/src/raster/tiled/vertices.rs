@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use crate::scene::{RenderOptions, Scene};
 use crate::shade::{byte_units, PhongShader, Terms, MAX_ATTRS};
-use crate::simd::{dispatch, Kernel, Simd, SimdLevel, Vf};
+use crate::simd::{dispatch, Kernel, Lanes, Simd, SimdLevel, Vf};
 
 /// Distinct (position, normal) pairs of a mesh, rebuilt only when the
 /// mesh's geometry or its corner normal indices change.
@@ -123,7 +123,7 @@ impl Kernel for VertexKernel<'_> {
                 }
             }
             let attrs: [Vf<S>; MAX_ATTRS] = std::array::from_fn(|k| Vf::load(s, &lanes[k]));
-            let rgb = self.shader.radiance(s, &attrs, self.specular);
+            let rgb = self.shader.radiance(&attrs, self.specular);
             let mut out = [[0f32; 8]; 3];
             for k in 0..3 {
                 let c = rgb[k].max(Vf::splat(s, 0.0)).min(Vf::splat(s, 1.0));

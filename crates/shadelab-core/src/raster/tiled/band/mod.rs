@@ -26,9 +26,9 @@
 //! into whole lanes and interpolated 8 at a time (whole blocks of large
 //! triangles skip the packing), with the same operations as a block would
 //! use, so the values do not depend on the packing. The interpolated
-//! fragments go into a second queue and are lit 32 at a time (four groups
-//! of 8 lit together, so that their long dependency chains overlap; two in
-//! WebAssembly), and
+//! fragments go into a second queue and are lit 64 at a time (four groups
+//! of 16 lanes lit together, so that their long dependency chains overlap;
+//! 16 in WebAssembly), and
 //! their colours written back in the order they were queued (a later
 //! fragment of the same pixel is written later, as without the queues; the
 //! position queue is emptied at the end of each triangle; eight queued
@@ -101,16 +101,18 @@ pub(crate) struct Band {
     pub covered: u64,
 }
 
-/// How many queued fragments a deferred shader lights at once: blocks of 8
-/// whose dependency chains the processor overlaps.
-const QUEUE_LIT: usize = 8 * LIT_GROUPS;
-/// On x86-64, four blocks (full-screen Phong 23 % faster than two, the
-/// meshes 2–5 %; eight were faster on the quad, slower on the meshes). In
-/// WebAssembly two: four spill in the engines (Phong 4–30 % slower).
+/// How many queued fragments a deferred shader lights at once: groups of
+/// 16 whose dependency chains the processor overlaps.
+const QUEUE_LIT: usize = 16 * LIT_GROUPS;
+/// On x86-64, four groups of 16. With 512-bit lanes the full-screen quad's
+/// Phong was 7–10 % faster than with two, the meshes within 1 % (with
+/// 8-lane groups, eight were faster on the quad but slower on the meshes,
+/// so the queue held four of 8). In WebAssembly one group (two vectors of
+/// 8 per attribute): more spill in the engines (Phong 4–30 % slower).
 #[cfg(target_arch = "x86_64")]
 const LIT_GROUPS: usize = 4;
 #[cfg(not(target_arch = "x86_64"))]
-const LIT_GROUPS: usize = 2;
+const LIT_GROUPS: usize = 1;
 
 /// Fragments of a deferred shader, packed into whole lanes: their
 /// attributes and buffer indices, in the order they passed the depth test.

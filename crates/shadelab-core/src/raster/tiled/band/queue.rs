@@ -128,35 +128,29 @@ impl Band {
         lanes: &Sh::Lanes<S>,
     ) {
         let q = &mut self.queue;
-        let mut blocks = [[Vf::splat(s, 0.0); MAX_ATTRS]; LIT_GROUPS];
-        for (g, block) in blocks.iter_mut().enumerate() {
+        let zero = s.f16_load(&[0.0; 16]);
+        let mut groups = [[zero; MAX_ATTRS]; LIT_GROUPS];
+        for (g, group) in groups.iter_mut().enumerate() {
             for k in 0..Sh::ATTRS {
-                block[k] = Vf::load(s, q.attrs[k][8 * g..8 * g + 8].try_into().unwrap());
+                group[k] = s.f16_load(q.attrs[k][16 * g..16 * g + 16].try_into().unwrap());
             }
         }
-        let colors = shader.light_groups(lanes, s, blocks.each_ref());
+        let mut colors = [[0; 16]; LIT_GROUPS];
+        shader.light_queue(lanes, s, &groups, &mut colors);
+        let colors = colors.as_flattened();
         let count = q.len.min(QUEUE_LIT);
-        for (g, colors) in colors.into_iter().enumerate() {
-            let n = count.saturating_sub(8 * g).min(8);
-            if n == 0 {
-                break;
-            }
-            let at: &[i32; 8] = q.at[8 * g..8 * g + 8].try_into().unwrap();
+        for b in 0..count.div_ceil(8) {
+            let n = (count - 8 * b).min(8);
+            let colors: &[i32; 8] = colors[8 * b..8 * b + 8].try_into().unwrap();
+            let at: &[i32; 8] = q.at[8 * b..8 * b + 8].try_into().unwrap();
             let in_a_row = Vi(s.i_load(at), s).eq_bits(Vi::ramp(s) + Vi::splat(s, at[0]));
             if n == 8 && in_a_row == 0xff {
                 // Eight fragments in a row (a whole block): one store.
                 let start = at[0] as usize;
-                s.i_store(
-                    colors.0,
-                    (&mut self.color[self.color_at + start..][..8])
-                        .try_into()
-                        .unwrap(),
-                );
+                self.color[self.color_at + start..][..8].copy_from_slice(colors);
             } else {
-                let mut values = [0i32; 8];
-                s.i_store(colors.0, &mut values);
                 for i in 0..n {
-                    self.color[self.color_at + at[i] as usize] = values[i];
+                    self.color[self.color_at + at[i] as usize] = colors[i];
                 }
             }
         }

@@ -6,7 +6,7 @@ use super::{Band, Pass};
 use crate::raster::tiled::setup::{plane_count, Plane, Triangle, Walk, GOURAUD_OF_ALL};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
 use crate::shade::{FlatShader, GouraudShader, Shader, MAX_ATTRS};
-use crate::simd::{Simd, Vf, Vi};
+use crate::simd::{Lanes, Simd, Vf, Vi};
 
 impl Band {
     /// Draws one triangle's rows within this band (rows `band_y0..band_y1`),

@@ -1,0 +1,200 @@
+//! Sixteen lanes in one AVX-512 register, for lighting Phong's queued
+//! fragments ([`super::SimdLevel::Avx512`]).
+//!
+//! Intel's server cores run 512-bit multiply-adds on two ports, as many per
+//! cycle as 256-bit ones: a vector of 16 does the work of two of 8 in the
+//! time of one. The reflection model is nearly all multiply-adds, so it is
+//! written over [`Lanes`] and lit 16 fragments at a time here. The rest
+//! of the rasterizer keeps its blocks of 8 ([`Avx2`]).
+//!
+//! Every operation is the 256-bit one's 512-bit twin, so each lane gets
+//! the same bits as in the AVX2 build. The two estimates have no twin
+//! (AVX-512's `vrsqrt14ps` and `vrcp14ps` are more precise, so they
+//! differ): they are taken on the two halves with the AVX2 instructions,
+//! then refined in 512 bits as [`Avx2`] refines them.
+
+use std::arch::x86_64::*;
+use std::ops::{Add, Mul, Sub};
+
+use super::avx2::{Avx2, Width};
+use super::{pow_unit, Lanes, Vf};
+
+/// Lighting in 512-bit vectors: the CPU has AVX-512 F, VL, BW and DQ.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Zmm;
+
+impl Width for Zmm {
+    type F16 = Wide;
+    fn supported() -> bool {
+        std::is_x86_feature_detected!("avx512f")
+            && std::is_x86_feature_detected!("avx512vl")
+            && std::is_x86_feature_detected!("avx512bw")
+            && std::is_x86_feature_detected!("avx512dq")
+    }
+    #[inline(always)]
+    fn load(s: Avx2<Zmm>, src: &[f32; 16]) -> Wide {
+        // SAFETY: `s` proves AVX-512 F (`Avx2::<Zmm>::new`); `src` is 16 lanes.
+        Wide(unsafe { _mm512_loadu_ps(src.as_ptr()) }, s)
+    }
+}
+
+/// 16 × f32 in one 512-bit register. The backend value beside it (no
+/// bytes) proves the CPU has AVX-512 F and DQ, which makes the `unsafe`
+/// intrinsic calls below sound.
+#[derive(Clone, Copy)]
+pub(crate) struct Wide(__m512, Avx2<Zmm>);
+
+// No closures here: one the compiler does not inline is compiled without
+// the backend's target features (see `shade/lanes.rs`).
+impl Wide {
+    /// The low and the high 8 lanes.
+    #[inline(always)]
+    fn split(self) -> [Vf<Avx2<Zmm>>; 2] {
+        // SAFETY: see `Wide`.
+        unsafe {
+            [
+                Vf(_mm512_castps512_ps256(self.0), self.1),
+                Vf(_mm512_extractf32x8_ps::<1>(self.0), self.1),
+            ]
+        }
+    }
+
+    /// The low and the high 8 lanes together.
+    #[inline(always)]
+    fn join([low, high]: [Vf<Avx2<Zmm>>; 2]) -> Wide {
+        // SAFETY: see `Wide`.
+        let v = unsafe { _mm512_insertf32x8::<1>(_mm512_castps256_ps512(low.0), high.0) };
+        Wide(v, low.1)
+    }
+}
+
+macro_rules! wide_operator {
+    ($trait:ident, $method:ident, $intrinsic:ident) => {
+        impl $trait for Wide {
+            type Output = Wide;
+            #[inline(always)]
+            fn $method(self, o: Wide) -> Wide {
+                // SAFETY: see `Wide`.
+                Wide(unsafe { $intrinsic(self.0, o.0) }, self.1)
+            }
+        }
+    };
+}
+wide_operator!(Add, add, _mm512_add_ps);
+wide_operator!(Sub, sub, _mm512_sub_ps);
+wide_operator!(Mul, mul, _mm512_mul_ps);
+
+impl Mul<f32> for Wide {
+    type Output = Wide;
+    #[inline(always)]
+    fn mul(self, o: f32) -> Wide {
+        self * self.splat_like(o)
+    }
+}
+
+impl Lanes for Wide {
+    type Mask = __mmask16;
+    const LANES: usize = 16;
+    #[inline(always)]
+    fn splat_like(self, v: f32) -> Wide {
+        // SAFETY: see `Wide`.
+        Wide(unsafe { _mm512_set1_ps(v) }, self.1)
+    }
+    #[inline(always)]
+    fn mul_add(self, m: Wide, a: Wide) -> Wide {
+        // SAFETY: see `Wide`.
+        Wide(unsafe { _mm512_fmadd_ps(self.0, m.0, a.0) }, self.1)
+    }
+    #[inline(always)]
+    fn min(self, o: Wide) -> Wide {
+        // As `vminps` of 256 bits: the second operand when either is NaN.
+        // SAFETY: see `Wide`.
+        Wide(unsafe { _mm512_min_ps(self.0, o.0) }, self.1)
+    }
+    #[inline(always)]
+    fn max(self, o: Wide) -> Wide {
+        // SAFETY: see `Wide`.
+        Wide(unsafe { _mm512_max_ps(self.0, o.0) }, self.1)
+    }
+    #[inline(always)]
+    fn rsqrt(self) -> Wide {
+        // AVX2's estimate per half, then its Newton step (see `Avx2`).
+        let [low, high] = self.split();
+        // SAFETY: see `Wide` (AVX-512 implies AVX).
+        let r = unsafe { [_mm256_rsqrt_ps(low.0), _mm256_rsqrt_ps(high.0)] };
+        let r = Wide::join([Vf(r[0], self.1), Vf(r[1], self.1)]);
+        // SAFETY: see `Wide`.
+        unsafe {
+            let three_minus =
+                _mm512_fnmadd_ps(_mm512_mul_ps(self.0, r.0), r.0, _mm512_set1_ps(3.0));
+            Wide(
+                _mm512_mul_ps(_mm512_mul_ps(r.0, _mm512_set1_ps(0.5)), three_minus),
+                self.1,
+            )
+        }
+    }
+    #[inline(always)]
+    fn recip(self) -> Wide {
+        // AVX2's estimate per half, then its Newton step (see `Avx2`).
+        let [low, high] = self.split();
+        // SAFETY: see `Wide` (AVX-512 implies AVX).
+        let r = unsafe { [_mm256_rcp_ps(low.0), _mm256_rcp_ps(high.0)] };
+        let r = Wide::join([Vf(r[0], self.1), Vf(r[1], self.1)]);
+        // SAFETY: see `Wide`.
+        unsafe {
+            let error = _mm512_fnmadd_ps(self.0, r.0, _mm512_set1_ps(1.0));
+            Wide(_mm512_fmadd_ps(r.0, error, r.0), self.1)
+        }
+    }
+    #[inline(always)]
+    fn gt(self, o: Wide) -> __mmask16 {
+        // SAFETY: see `Wide`.
+        unsafe { _mm512_cmp_ps_mask::<_CMP_GT_OQ>(self.0, o.0) }
+    }
+    #[inline(always)]
+    fn select(mask: __mmask16, yes: Wide, no: Wide) -> Wide {
+        // SAFETY: see `Wide`.
+        Wide(unsafe { _mm512_mask_blend_ps(mask, no.0, yes.0) }, yes.1)
+    }
+    #[inline(always)]
+    fn pow_unit(self, p: f32) -> Wide {
+        let [low, high] = self.split();
+        Wide::join([pow_unit(low, p), pow_unit(high, p)])
+    }
+    #[inline(always)]
+    fn map(self, f: impl Fn(f32) -> f32) -> Wide {
+        let mut lanes = [0.0; 16];
+        self.store_to(&mut lanes);
+        Zmm::load(self.1, &lanes.map(f))
+    }
+    #[inline(always)]
+    fn store_to(self, dst: &mut [f32]) {
+        let dst: &mut [f32; 16] = dst.try_into().unwrap();
+        // SAFETY: see `Wide`; `dst` is 16 lanes.
+        unsafe { _mm512_storeu_ps(dst.as_mut_ptr(), self.0) };
+    }
+    #[inline(always)]
+    fn store_bytes(r: Wide, g: Wide, b: Wide, dst: &mut [i32]) {
+        let dst: &mut [i32; 16] = dst.try_into().unwrap();
+        // SAFETY: see `Wide`; `dst` is 16 lanes.
+        unsafe {
+            // As `Avx2::f_to_bytes`: `min(255.5, c)` keeps NaN, which
+            // truncates to i32::MIN; the saturation to 0..=255 is then a
+            // maximum with zero (no lane is above 255).
+            #[inline(always)]
+            unsafe fn byte(c: Wide) -> __m512i {
+                let top = _mm512_set1_ps(255.5);
+                _mm512_max_epi32(
+                    _mm512_cvttps_epi32(_mm512_min_ps(top, c.0)),
+                    _mm512_setzero_si512(),
+                )
+            }
+            let (r, g, b) = (byte(r), byte(g), byte(b));
+            let packed = _mm512_or_si512(
+                r,
+                _mm512_or_si512(_mm512_slli_epi32::<8>(g), _mm512_slli_epi32::<16>(b)),
+            );
+            _mm512_storeu_si512(dst.as_mut_ptr().cast(), packed);
+        }
+    }
+}
