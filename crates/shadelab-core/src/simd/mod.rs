@@ -267,6 +267,12 @@ pub(crate) trait Simd: Copy + Send + Sync {
     type F16: Lanes;
     /// 16 lanes from memory.
     fn f16_load(self, src: &[f32; 16]) -> Self::F16;
+    /// How many groups of 16 queued fragments a deferred shader lights
+    /// together, so that their dependency chains overlap: 1 or 4. Four
+    /// only where the registers hold them (the x86 backends); the portable
+    /// backend's lanes are scalar code that four groups would unroll into
+    /// functions too large to compile in reasonable time.
+    const LIT_GROUPS: usize = 1;
 }
 
 /// 8 × f32 with operators, for backend `S`.

@@ -1,4 +1,4 @@
-//! The portable backend: arrays of 8 and loops, plain safe Rust.
+//! The portable backend: arrays of 8, plain safe Rust.
 
 use super::{Pair, Simd, Vf};
 
@@ -21,18 +21,25 @@ pub(super) const COMPRESS: [[i32; 8]; 256] = {
     table
 };
 
-/// The portable backend: arrays and loops.
+/// The portable backend: arrays, one lane after the other.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Portable;
 
+/// `[e(0), e(1), …, e(7)]`, written out rather than looped: inlined into
+/// the rasterizer, the portable backend's every operation would otherwise
+/// be a loop of its own, and LLVM's loop passes grow with the number of
+/// loops times the size of the function (thousands of loops in one band
+/// kernel made the crate take minutes to compile).
 macro_rules! lanes {
-    (|$i:ident| $e:expr) => {{
-        let mut out = [Default::default(); 8];
-        for $i in 0..8 {
-            out[$i] = $e;
-        }
-        out
-    }};
+    (|$i:ident| $e:expr) => {
+        lanes!(@ $i, $e, 0 1 2 3 4 5 6 7)
+    };
+    (@ $i:ident, $e:expr, $($n:literal)*) => {
+        [$({
+            let $i = $n;
+            $e
+        }),*]
+    };
 }
 
 impl Simd for Portable {

@@ -101,18 +101,9 @@ pub(crate) struct Band {
     pub covered: u64,
 }
 
-/// How many queued fragments a deferred shader lights at once: groups of
-/// 16 whose dependency chains the processor overlaps.
-const QUEUE_LIT: usize = 16 * LIT_GROUPS;
-/// On x86-64, four groups of 16. With 512-bit lanes the full-screen quad's
-/// Phong was 7–10 % faster than with two, the meshes within 1 % (with
-/// 8-lane groups, eight were faster on the quad but slower on the meshes,
-/// so the queue held four of 8). In WebAssembly one group (two vectors of
-/// 8 per attribute): more spill in the engines (Phong 4–30 % slower).
-#[cfg(target_arch = "x86_64")]
-const LIT_GROUPS: usize = 4;
-#[cfg(not(target_arch = "x86_64"))]
-const LIT_GROUPS: usize = 1;
+/// The most queued fragments a deferred shader lights at once: the
+/// queue's capacity. Each backend lights `16 · Simd::LIT_GROUPS`.
+const QUEUE_LIT: usize = 16 * 4;
 
 /// Fragments of a deferred shader, packed into whole lanes: their
 /// attributes and buffer indices, in the order they passed the depth test.

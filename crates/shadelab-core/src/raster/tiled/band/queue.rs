@@ -1,9 +1,10 @@
 //! Phong's deferred shading in a band: the positions of fragments that
 //! passed the depth test packed into whole lanes, interpolated 8 at a time,
-//! queued, lit [`QUEUE_LIT`] at a time and written back in queue order (see `mod.rs`).
+//! queued, lit `16 · Simd::LIT_GROUPS` at a time and written back in queue
+//! order (see `mod.rs`).
 
 use super::walk::{interpolate, Fill, Row};
-use super::{Band, LIT_GROUPS, QUEUE_LIT};
+use super::Band;
 use crate::shade::{Shader, MAX_ATTRS};
 use crate::simd::{Simd, Vf, Vi};
 
@@ -96,7 +97,8 @@ impl Band {
     }
 
     /// Appends the first `count` lanes of `attrs` (buffer indices `index`)
-    /// to the lighting queue, and lights them once there are [`QUEUE_LIT`].
+    /// to the lighting queue, and lights them once there are
+    /// `16 · S::LIT_GROUPS`.
     #[inline(always)]
     pub(super) fn queue_lit<S: Simd, Sh: Shader>(
         &mut self,
@@ -113,13 +115,13 @@ impl Band {
         }
         s.i_store(index, (&mut q.at[len..len + 8]).try_into().unwrap());
         q.len = len + count;
-        if q.len >= QUEUE_LIT {
+        if q.len >= 16 * S::LIT_GROUPS {
             self.shade_queue(s, f.shader, f.shader_lanes);
         }
     }
 
-    /// Shades the first (up to) [`QUEUE_LIT`] queued fragments, as
-    /// blocks lit together, and writes their colours.
+    /// Shades the first (up to) `16 · S::LIT_GROUPS` queued fragments, as
+    /// groups of 16 lit together, and writes their colours.
     #[inline(always)]
     pub(super) fn shade_queue<S: Simd, Sh: Shader>(
         &mut self,
@@ -127,18 +129,36 @@ impl Band {
         shader: &Sh,
         lanes: &Sh::Lanes<S>,
     ) {
+        // The condition is a constant of the backend, so only the taken
+        // arm is compiled for it (rustc does not instantiate code under a
+        // branch a monomorphic constant rules out).
+        if S::LIT_GROUPS == 4 {
+            self.shade_groups::<S, Sh, 4>(s, shader, lanes);
+        } else {
+            self.shade_groups::<S, Sh, 1>(s, shader, lanes);
+        }
+    }
+
+    /// [`Band::shade_queue`] for `G` groups.
+    #[inline(always)]
+    fn shade_groups<S: Simd, Sh: Shader, const G: usize>(
+        &mut self,
+        s: S,
+        shader: &Sh,
+        lanes: &Sh::Lanes<S>,
+    ) {
         let q = &mut self.queue;
         let zero = s.f16_load(&[0.0; 16]);
-        let mut groups = [[zero; MAX_ATTRS]; LIT_GROUPS];
+        let mut groups = [[zero; MAX_ATTRS]; G];
         for (g, group) in groups.iter_mut().enumerate() {
             for k in 0..Sh::ATTRS {
                 group[k] = s.f16_load(q.attrs[k][16 * g..16 * g + 16].try_into().unwrap());
             }
         }
-        let mut colors = [[0; 16]; LIT_GROUPS];
+        let mut colors = [[0; 16]; G];
         shader.light_queue(lanes, s, &groups, &mut colors);
         let colors = colors.as_flattened();
-        let count = q.len.min(QUEUE_LIT);
+        let count = q.len.min(16 * G);
         for b in 0..count.div_ceil(8) {
             let n = (count - 8 * b).min(8);
             let colors: &[i32; 8] = colors[8 * b..8 * b + 8].try_into().unwrap();
@@ -156,10 +176,10 @@ impl Band {
         }
         // Later fragments move to the front, keeping their order.
         for k in 0..Sh::ATTRS {
-            let rest = Vf::load(s, q.attrs[k][QUEUE_LIT..].try_into().unwrap());
+            let rest = Vf::load(s, q.attrs[k][16 * G..16 * G + 8].try_into().unwrap());
             rest.store((&mut q.attrs[k][..8]).try_into().unwrap());
         }
-        let rest = s.i_load(q.at[QUEUE_LIT..].try_into().unwrap());
+        let rest = s.i_load(q.at[16 * G..16 * G + 8].try_into().unwrap());
         s.i_store(rest, (&mut q.at[..8]).try_into().unwrap());
         q.len -= count;
     }
