@@ -5,7 +5,8 @@
 //! f32) and [`Vi`] (8 × i32, also used as lane masks) giving it ordinary
 //! operators. Three backends exist:
 //!
-//! * [`Portable`]: arrays of 8 and loops, plain safe Rust that compiles for
+//! * [`Portable`]: arrays of 8, each operation written out lane by lane
+//!   (not looped: see `portable.rs`), plain safe Rust that compiles for
 //!   any target (LLVM vectorizes some of it: SSE2, or `simd128` on
 //!   WebAssembly when enabled);
 //! * [`Avx2`] (x86-64): one AVX2 instruction per operation. A value of this
