@@ -61,7 +61,7 @@ impl<W: Width> Simd for Avx2<W> {
     /// faster than with two, the meshes within 1 % (with 8-lane groups,
     /// eight were faster on the quad but slower on the meshes, so the
     /// queue held four of 8).
-    const LIT_GROUPS: usize = 4;
+    const LIT_GROUPS: usize = super::MAX_LIT_GROUPS;
 
     #[inline(always)]
     fn f16_load(self, src: &[f32; 16]) -> W::F16 {

@@ -269,12 +269,17 @@ pub(crate) trait Simd: Copy + Send + Sync {
     /// 16 lanes from memory.
     fn f16_load(self, src: &[f32; 16]) -> Self::F16;
     /// How many groups of 16 queued fragments a deferred shader lights
-    /// together, so that their dependency chains overlap: 1 or 4. Four
+    /// together, so that their dependency chains overlap: 1 or
+    /// [`MAX_LIT_GROUPS`] (checked where the queue is lit). Four
     /// only where the registers hold them (the x86 backends); the portable
     /// backend's lanes are scalar code that four groups would unroll into
     /// functions too large to compile in reasonable time.
     const LIT_GROUPS: usize = 1;
 }
+
+/// The most groups of 16 any backend lights together ([`Simd::LIT_GROUPS`]):
+/// the size of the lighting queue.
+pub(crate) const MAX_LIT_GROUPS: usize = 4;
 
 /// 8 × f32 with operators, for backend `S`.
 #[derive(Clone, Copy)]

@@ -103,7 +103,7 @@ pub(crate) struct Band {
 
 /// The most queued fragments a deferred shader lights at once: the
 /// queue's capacity. Each backend lights `16 · Simd::LIT_GROUPS`.
-const QUEUE_LIT: usize = 16 * 4;
+const QUEUE_LIT: usize = 16 * crate::simd::MAX_LIT_GROUPS;
 
 /// Fragments of a deferred shader, packed into whole lanes: their
 /// attributes and buffer indices, in the order they passed the depth test.

@@ -6,7 +6,7 @@
 use super::walk::{interpolate, Fill, Row};
 use super::Band;
 use crate::shade::{Shader, MAX_ATTRS};
-use crate::simd::{Simd, Vf, Vi};
+use crate::simd::{Simd, Vf, Vi, MAX_LIT_GROUPS};
 
 impl Band {
     /// Keeps the positions of the lanes in `bits` (columns `x` from the
@@ -129,11 +129,13 @@ impl Band {
         shader: &Sh,
         lanes: &Sh::Lanes<S>,
     ) {
-        // The condition is a constant of the backend, so only the taken
-        // arm is compiled for it (rustc does not instantiate code under a
-        // branch a monomorphic constant rules out).
-        if S::LIT_GROUPS == 4 {
-            self.shade_groups::<S, Sh, 4>(s, shader, lanes);
+        // Any other count would light fewer than were queued (and the
+        // queue keeps only 8 for later): refuse it at compile time.
+        const { assert!(S::LIT_GROUPS == 1 || S::LIT_GROUPS == MAX_LIT_GROUPS) };
+        // The condition is a constant of the backend: the other arm is
+        // dead code for it.
+        if S::LIT_GROUPS == MAX_LIT_GROUPS {
+            self.shade_groups::<S, Sh, MAX_LIT_GROUPS>(s, shader, lanes);
         } else {
             self.shade_groups::<S, Sh, 1>(s, shader, lanes);
         }
