@@ -322,4 +322,54 @@ impl<W: Width> Simd for Avx2<W> {
             (p.add(20) as *mut i32).write_unaligned(_mm_extract_epi32::<2>(high));
         }
     }
+
+    #[inline(always)]
+    fn i_stream_rgb(self, v: [__m256i; 4], dst: &mut [u8; 96]) {
+        // SAFETY: see the impl; the three 32-byte stores write bytes
+        // 0..96 of `dst`, the streaming ones only at a 32-byte aligned
+        // address, as they require.
+        unsafe {
+            let compact = _mm256_setr_epi8(
+                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, //
+                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
+            );
+            // Each block's 24 bytes are its dwords 0, 1, 2, 4, 5, 6 now.
+            let c0 = _mm256_shuffle_epi8(v[0], compact);
+            let c1 = _mm256_shuffle_epi8(v[1], compact);
+            let c2 = _mm256_shuffle_epi8(v[2], compact);
+            let c3 = _mm256_shuffle_epi8(v[3], compact);
+            // (No closures here: see `Surface::radiance`.)
+            // Bytes 0..32: block 0 whole, block 1's first 8 bytes.
+            let out0 = _mm256_blend_epi32::<0b1100_0000>(
+                _mm256_permutevar8x32_epi32(c0, _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 0, 0)),
+                _mm256_permutevar8x32_epi32(c1, _mm256_setr_epi32(0, 0, 0, 0, 0, 0, 0, 1)),
+            );
+            // 32..64: block 1's last 16 bytes, block 2's first 16.
+            let out1 = _mm256_blend_epi32::<0b1111_0000>(
+                _mm256_permutevar8x32_epi32(c1, _mm256_setr_epi32(2, 4, 5, 6, 0, 0, 0, 0)),
+                _mm256_permutevar8x32_epi32(c2, _mm256_setr_epi32(0, 0, 0, 0, 0, 1, 2, 4)),
+            );
+            // 64..96: block 2's last 8 bytes, block 3 whole.
+            let out2 = _mm256_blend_epi32::<0b1111_1100>(
+                _mm256_permutevar8x32_epi32(c2, _mm256_setr_epi32(5, 6, 0, 0, 0, 0, 0, 0)),
+                _mm256_permutevar8x32_epi32(c3, _mm256_setr_epi32(0, 0, 0, 1, 2, 4, 5, 6)),
+            );
+            let p = dst.as_mut_ptr().cast::<__m256i>();
+            if (p as usize).is_multiple_of(32) {
+                _mm256_stream_si256(p, out0);
+                _mm256_stream_si256(p.add(1), out1);
+                _mm256_stream_si256(p.add(2), out2);
+            } else {
+                _mm256_storeu_si256(p, out0);
+                _mm256_storeu_si256(p.add(1), out1);
+                _mm256_storeu_si256(p.add(2), out2);
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn store_fence(self) {
+        // SAFETY: see the impl (SSE, which every AVX2 processor has).
+        unsafe { _mm_sfence() }
+    }
 }

@@ -261,6 +261,29 @@ pub(crate) trait Simd: Copy + Send + Sync {
 
     /// The low three bytes of each lane, packed: 8 RGB pixels.
     fn i_store_rgb(self, v: Self::I, dst: &mut [u8; 24]);
+    /// Four blocks' RGB pixels (as [`Simd::i_store_rgb`]), 32 in a row,
+    /// with non-temporal (streaming) stores where the backend has them and
+    /// `dst` is 32-byte aligned: they go to memory without first reading
+    /// the lines into the caches, and without pushing out what is there.
+    /// Call [`Simd::store_fence`] before anything else touches `dst`.
+    #[inline(always)]
+    fn i_stream_rgb(self, v: [Self::I; 4], dst: &mut [u8; 96]) {
+        let (a, b) = dst.split_at_mut(48);
+        let [a0, a1] = a.as_chunks_mut::<24>().0 else {
+            unreachable!()
+        };
+        let [b0, b1] = b.as_chunks_mut::<24>().0 else {
+            unreachable!()
+        };
+        self.i_store_rgb(v[0], a0);
+        self.i_store_rgb(v[1], a1);
+        self.i_store_rgb(v[2], b0);
+        self.i_store_rgb(v[3], b1);
+    }
+    /// Orders the streaming stores of [`Simd::i_stream_rgb`] before
+    /// whatever this thread does next (nothing where there are none).
+    #[inline(always)]
+    fn store_fence(self) {}
 
     /// 16 lanes of `f32` for lighting Phong's queued fragments: one
     /// AVX-512 vector ([`SimdLevel::Avx512`]) or a [`Pair`] of this

@@ -199,13 +199,20 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         match self.output {
             Output::Image(pixels, background) => {
                 self.band
-                    .finish(simd, pixels, o.width, background, Colors::Shader)
+                    .finish(simd, pixels, o.width, o.height, background, Colors::Shader)
             }
             Output::Methods([flat, gouraud, phong], background) => {
                 let band = &mut *self.band;
-                band.finish(simd, flat, o.width, background, Colors::Flat);
-                band.finish(simd, gouraud, o.width, background, Colors::Gouraud);
-                band.finish(simd, phong, o.width, background, Colors::Shader);
+                band.finish(simd, flat, o.width, o.height, background, Colors::Flat);
+                band.finish(
+                    simd,
+                    gouraud,
+                    o.width,
+                    o.height,
+                    background,
+                    Colors::Gouraud,
+                );
+                band.finish(simd, phong, o.width, o.height, background, Colors::Shader);
             }
             Output::Counts(counts) => self.band.finish_counts(counts, o.width),
         }
