@@ -44,14 +44,13 @@
 //! blended into two more colour buffers; `finish` then reads each buffer
 //! into its image (the depth, and so what is background, is the same).
 //!
-//! `finish` writes a band's rows into the image four blocks (96 bytes) at
-//! a time, as three aligned 32-byte stores. In an image larger than a
-//! core's second-level cache those are streaming stores, which do not
-//! read the image's lines into the caches first nor push out what the
-//! next frame needs there (the mesh, the bins, the band buffers): on a
-//! dense mesh at 1920×1080 that is 5–15 % of the frame; the full-screen
-//! quad, which has nothing else to keep, loses a little (BENCHMARKS.md,
-//! "Streaming the image out").
+//! In an image larger than a core's second-level cache, `finish` writes
+//! a band's rows four blocks (96 bytes) at a time, as three aligned 32-byte
+//! streaming stores: they do not read the image's lines into the caches
+//! first, nor push out what the next frame needs there (the mesh, the
+//! bins, the band buffers). On a dense mesh at 1920×1080 that takes 2–8 %
+//! off the frame; the full-screen quad, which has nothing else to keep in
+//! the caches, loses a little (BENCHMARKS.md, "Streaming the image out").
 //!
 //! Nothing here allocates. Everything is `#[inline(always)]` so that
 //! [`crate::simd::dispatch`] compiles it for AVX2 and for the portable path.
