@@ -38,6 +38,20 @@ impl Width for Ymm {
 }
 
 impl<W: Width> Avx2<W> {
+    /// Each lane's low three bytes (a pixel's RGB) packed to the front of
+    /// its 128-bit half: 12 bytes per half, then 4 zero bytes.
+    #[inline(always)]
+    fn compact_rgb(self, v: __m256i) -> __m256i {
+        // SAFETY: as for the `Simd` impl below: `self` is an `Avx2`.
+        unsafe {
+            let compact = _mm256_setr_epi8(
+                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, //
+                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
+            );
+            _mm256_shuffle_epi8(v, compact)
+        }
+    }
+
     pub fn new() -> Option<Avx2<W>> {
         (std::is_x86_feature_detected!("avx2")
             && std::is_x86_feature_detected!("fma")
@@ -279,6 +293,12 @@ impl<W: Width> Simd for Avx2<W> {
         // SAFETY: see the impl; `order` is 8 lanes.
         unsafe { _mm256_permutevar8x32_epi32(v, _mm256_loadu_si256(order.as_ptr().cast())) }
     }
+    #[inline(always)]
+    fn i_rotate(self, v: __m256i, by: usize) -> __m256i {
+        let order = &super::portable::ROTATE[by & 7];
+        // SAFETY: see the impl; `order` is 8 lanes.
+        unsafe { _mm256_permutevar8x32_epi32(v, _mm256_loadu_si256(order.as_ptr().cast())) }
+    }
 
     #[inline(always)]
     fn f_to_bytes(self, r: __m256, g: __m256, b: __m256) -> __m256i {
@@ -309,11 +329,7 @@ impl<W: Width> Simd for Avx2<W> {
         // SAFETY: see the impl; the first store writes bytes 0..16, the
         // second and third 12..20 and 20..24, all within `dst`.
         unsafe {
-            let compact = _mm256_setr_epi8(
-                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, //
-                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
-            );
-            let packed = _mm256_shuffle_epi8(v, compact);
+            let packed = self.compact_rgb(v);
             let low = _mm256_castsi256_si128(packed);
             let high = _mm256_extracti128_si256::<1>(packed);
             let p = dst.as_mut_ptr();
@@ -329,16 +345,10 @@ impl<W: Width> Simd for Avx2<W> {
         // 0..96 of `dst`, the streaming ones only at a 32-byte aligned
         // address, as they require.
         unsafe {
-            let compact = _mm256_setr_epi8(
-                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1, //
-                0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
-            );
-            // Each block's 24 bytes are its dwords 0, 1, 2, 4, 5, 6 now.
-            let c0 = _mm256_shuffle_epi8(v[0], compact);
-            let c1 = _mm256_shuffle_epi8(v[1], compact);
-            let c2 = _mm256_shuffle_epi8(v[2], compact);
-            let c3 = _mm256_shuffle_epi8(v[3], compact);
             // (No closures here: see `Surface::radiance`.)
+            let (c0, c1) = (self.compact_rgb(v[0]), self.compact_rgb(v[1]));
+            let (c2, c3) = (self.compact_rgb(v[2]), self.compact_rgb(v[3]));
+            // Each block's 24 bytes are its dwords 0, 1, 2, 4, 5, 6 now.
             // Bytes 0..32: block 0 whole, block 1's first 8 bytes.
             let out0 = _mm256_blend_epi32::<0b1100_0000>(
                 _mm256_permutevar8x32_epi32(c0, _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 0, 0)),

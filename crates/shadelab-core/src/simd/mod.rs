@@ -188,6 +188,27 @@ pub(crate) fn prefetch<T>(value: &T) {
     let _ = value;
 }
 
+/// `dst[at[i]] = values[i]` for the 8 lanes in order (a later lane wins
+/// where two indices are the same), with one bounds check for the eight:
+/// Phong's write-back of queued fragments, whose indices are scattered.
+///
+/// # Panics
+/// If an index is negative or not below `dst.len()`.
+#[inline(always)]
+pub(crate) fn scatter(values: &[i32; 8], at: &[i32; 8], dst: &mut [i32]) {
+    // As unsigned, a negative index is larger than any length.
+    let largest = at.iter().fold(0u32, |m, &i| m.max(i as u32));
+    assert!(
+        (largest as usize) < dst.len(),
+        "scatter index out of bounds"
+    );
+    for i in 0..8 {
+        // SAFETY: every `at[i]`, as unsigned, is at most `largest`, which is
+        // below `dst.len()`.
+        unsafe { *dst.get_unchecked_mut(at[i] as u32 as usize) = values[i] };
+    }
+}
+
 /// The operations the rasterizer needs on 8 lanes.
 pub(crate) trait Simd: Copy + Send + Sync {
     /// 8 × f32.
@@ -253,6 +274,9 @@ pub(crate) trait Simd: Copy + Send + Sync {
     fn f_compress(self, v: Self::F, bits: u32) -> Self::F;
     /// As [`Simd::f_compress`], for `i32` lanes.
     fn i_compress(self, v: Self::I, bits: u32) -> Self::I;
+    /// The lanes moved up by `by` (0..8), those past lane 7 wrapping round
+    /// to the front: lane `i` of the result is lane `(i − by) mod 8` of `v`.
+    fn i_rotate(self, v: Self::I, by: usize) -> Self::I;
 
     /// Three channels in byte units plus one half (`255·c + 0.5`), each
     /// truncated and saturated to 0..=255 (NaN to 0, as Rust's `as u8`),
@@ -342,6 +366,11 @@ impl<S: Simd> Vf<S> {
     pub fn compress(self, bits: u32) -> Self {
         Vf(self.1.f_compress(self.0, bits), self.1)
     }
+    /// See [`Simd::i_rotate`].
+    #[inline(always)]
+    pub fn rotate(self, by: usize) -> Self {
+        self.bits().rotate(by).bits_to_f()
+    }
     /// Truncates towards zero; lanes must lie within ±2^31.
     #[inline(always)]
     pub fn to_i(self) -> Vi<S> {
@@ -388,6 +417,11 @@ impl<S: Simd> Vi<S> {
     #[inline(always)]
     pub fn compress(self, bits: u32) -> Self {
         Vi(self.1.i_compress(self.0, bits), self.1)
+    }
+    /// See [`Simd::i_rotate`].
+    #[inline(always)]
+    pub fn rotate(self, by: usize) -> Self {
+        Vi(self.1.i_rotate(self.0, by), self.1)
     }
     #[inline(always)]
     pub fn mask_bits(self) -> u32 {

@@ -21,6 +21,22 @@ pub(super) const COMPRESS: [[i32; 8]; 256] = {
     table
 };
 
+/// For each shift `by` (0..8), the lanes that [`Simd::i_rotate`] reads:
+/// lane `i` takes lane `(i − by) mod 8`.
+pub(super) const ROTATE: [[i32; 8]; 8] = {
+    let mut table = [[0i32; 8]; 8];
+    let mut by = 0;
+    while by < 8 {
+        let mut lane = 0;
+        while lane < 8 {
+            table[by][lane] = ((lane + 8 - by) % 8) as i32;
+            lane += 1;
+        }
+        by += 1;
+    }
+    table
+};
+
 /// The portable backend: arrays, one lane after the other.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Portable;
@@ -206,6 +222,11 @@ impl Simd for Portable {
     #[inline(always)]
     fn i_compress(self, v: [i32; 8], bits: u32) -> [i32; 8] {
         let order = &COMPRESS[bits as usize & 255];
+        lanes!(|i| v[order[i] as usize])
+    }
+    #[inline(always)]
+    fn i_rotate(self, v: [i32; 8], by: usize) -> [i32; 8] {
+        let order = &ROTATE[by & 7];
         lanes!(|i| v[order[i] as usize])
     }
 

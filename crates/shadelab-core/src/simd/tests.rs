@@ -145,3 +145,55 @@ fn compress_every_mask() {
         );
     }
 }
+
+struct Rotate(usize);
+
+impl Kernel for Rotate {
+    type Output = ([f32; 8], [i32; 8]);
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> ([f32; 8], [i32; 8]) {
+        let (mut f, mut i) = ([0.0; 8], [0; 8]);
+        (Vf::lanes(s) + Vf::splat(s, 0.5))
+            .rotate(self.0)
+            .store(&mut f);
+        s.i_store((Vi::ramp(s) * Vi::splat(s, -3)).rotate(self.0).0, &mut i);
+        (f, i)
+    }
+}
+
+/// Every shift moves the lanes up and wraps the last ones round to the
+/// front, in every backend.
+#[test]
+fn rotate_every_shift() {
+    for level in SimdLevel::supported() {
+        for by in 0..8 {
+            let (f, i) = dispatch(level, Rotate(by));
+            let source: [usize; 8] = std::array::from_fn(|lane| (lane + 8 - by) % 8);
+            assert_eq!(f, source.map(|k| k as f32 + 0.5), "{level:?}, by {by}");
+            assert_eq!(i, source.map(|k| -3 * k as i32), "{level:?}, by {by}");
+        }
+    }
+}
+
+#[test]
+fn scatter_writes_in_lane_order() {
+    let mut dst = [0; 12];
+    scatter(
+        &[1, 2, 3, 4, 5, 6, 7, 8],
+        &[11, 0, 5, 5, 3, 0, 9, 2],
+        &mut dst,
+    );
+    assert_eq!(dst, [6, 0, 8, 5, 0, 4, 0, 0, 0, 7, 0, 1]);
+}
+
+#[test]
+#[should_panic(expected = "scatter index out of bounds")]
+fn scatter_checks_the_largest_index() {
+    scatter(&[0; 8], &[0, 1, 2, 3, 12, 5, 6, 7], &mut [0; 12]);
+}
+
+#[test]
+#[should_panic(expected = "scatter index out of bounds")]
+fn scatter_refuses_negative_indices() {
+    scatter(&[0; 8], &[0, 1, 2, -1, 4, 5, 6, 7], &mut [0; 12]);
+}

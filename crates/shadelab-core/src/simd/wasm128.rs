@@ -12,7 +12,7 @@
 
 use std::arch::wasm32::*;
 
-use super::portable::COMPRESS;
+use super::portable::{COMPRESS, ROTATE};
 use super::{Pair, Simd, Vf};
 
 /// The `simd128` backend (WebAssembly built with `+simd128` only).
@@ -23,26 +23,44 @@ pub(crate) struct Wasm128;
 /// lanes (`COMPRESS`) from the low half (`[.][h][0]`) and the high half
 /// (`[.][h][1]`) of an 8-lane vector; an index of 0xff picks zero, so the
 /// two gathers are ORed.
-const COMPRESS_BYTES: [[[[u8; 16]; 2]; 2]; 256] = {
-    let mut table = [[[[0xffu8; 16]; 2]; 2]; 256];
-    let mut mask = 0;
-    while mask < 256 {
+const COMPRESS_BYTES: [[[[u8; 16]; 2]; 2]; 256] = byte_orders(&COMPRESS);
+
+/// As `COMPRESS_BYTES`, for each shift of [`Simd::i_rotate`] (`ROTATE`).
+const ROTATE_BYTES: [[[[u8; 16]; 2]; 2]; 8] = byte_orders(&ROTATE);
+
+/// Lane permutations (`orders[k][lane]` is the source lane) as the byte
+/// indices of two swizzles per output half (see `COMPRESS_BYTES`).
+const fn byte_orders<const N: usize>(orders: &[[i32; 8]; N]) -> [[[[u8; 16]; 2]; 2]; N] {
+    let mut table = [[[[0xffu8; 16]; 2]; 2]; N];
+    let mut k = 0;
+    while k < N {
         let mut lane = 0;
         while lane < 8 {
-            let source = COMPRESS[mask][lane] as usize;
+            let source = orders[k][lane] as usize;
             let (half, slot) = (lane / 4, lane % 4);
             let (from, within) = (source / 4, source % 4);
             let mut byte = 0;
             while byte < 4 {
-                table[mask][half][from][4 * slot + byte] = (4 * within + byte) as u8;
+                table[k][half][from][4 * slot + byte] = (4 * within + byte) as u8;
                 byte += 1;
             }
             lane += 1;
         }
-        mask += 1;
+        k += 1;
     }
     table
-};
+}
+
+/// `v`'s lanes gathered as `table` says (see `COMPRESS_BYTES`).
+#[inline(always)]
+fn gather_lanes(v: [v128; 2], table: &[[[u8; 16]; 2]; 2]) -> [v128; 2] {
+    let gather = |half: &[[u8; 16]; 2]| {
+        let from_low = u8x16_swizzle(v[0], bytes(&half[0]));
+        let from_high = u8x16_swizzle(v[1], bytes(&half[1]));
+        v128_or(from_low, from_high)
+    };
+    [gather(&table[0]), gather(&table[1])]
+}
 
 /// Applies a 4-lane operation to both halves (a macro, not a function
 /// taking a closure: the intrinsics are `target_feature` functions, which
@@ -259,13 +277,11 @@ impl Simd for Wasm128 {
     }
     #[inline(always)]
     fn i_compress(self, v: [v128; 2], bits: u32) -> [v128; 2] {
-        let table = &COMPRESS_BYTES[bits as usize & 255];
-        let gather = |half: &[[u8; 16]; 2]| {
-            let from_low = u8x16_swizzle(v[0], bytes(&half[0]));
-            let from_high = u8x16_swizzle(v[1], bytes(&half[1]));
-            v128_or(from_low, from_high)
-        };
-        [gather(&table[0]), gather(&table[1])]
+        gather_lanes(v, &COMPRESS_BYTES[bits as usize & 255])
+    }
+    #[inline(always)]
+    fn i_rotate(self, v: [v128; 2], by: usize) -> [v128; 2] {
+        gather_lanes(v, &ROTATE_BYTES[by & 7])
     }
 
     #[inline(always)]

@@ -6,12 +6,13 @@
 use super::walk::{interpolate, Fill, Row};
 use super::Band;
 use crate::shade::{Shader, MAX_ATTRS};
-use crate::simd::{Simd, Vf, Vi, MAX_LIT_GROUPS};
+use crate::simd::{scatter, Lanes, Simd, Vf, Vi, MAX_LIT_GROUPS};
 
 impl Band {
     /// Keeps the positions of the lanes in `bits` (columns `x` from the
     /// triangle's first, `dy` rows down; block at buffer index `at`) for
-    /// interpolation 8 at a time.
+    /// interpolation 8 at a time: packed, moved up behind the pending ones
+    /// in registers, and interpolated once 8 are there.
     #[inline(always)]
     pub(super) fn pend<S: Simd, Sh: Shader>(
         &mut self,
@@ -24,36 +25,40 @@ impl Band {
     ) {
         let p = &mut self.pending;
         let len = p.len;
-        x.compress(bits)
-            .store((&mut p.x[len..len + 8]).try_into().unwrap());
-        Vf::splat(s, dy).store((&mut p.dy[len..len + 8]).try_into().unwrap());
         let index = Vi::ramp(s) + Vi::splat(s, at as i32);
-        let slot: &mut [i32; 8] = (&mut p.at[len..len + 8]).try_into().unwrap();
-        s.i_store(index.compress(bits).0, slot);
-        p.len = len + bits.count_ones() as usize;
-        if p.len >= 8 {
-            self.interpolate_pending(s, f);
+        // The new positions from lane `len` on; those past lane 7 wrap
+        // round to the front, where they are what stays pending.
+        let (new_x, new_dy) = (x.compress(bits).rotate(len), Vf::splat(s, dy));
+        let new_at = index.compress(bits).rotate(len);
+        let old = Vi::splat(s, len as i32).gt(Vi::ramp(s));
+        let full_x = Vf::select(old, Vf::load(s, &p.x), new_x);
+        let full_dy = Vf::select(old, Vf::load(s, &p.dy), new_dy);
+        let full_at = Vi::select(old, Vi(s.i_load(&p.at), s), new_at);
+        let total = len + bits.count_ones() as usize;
+        if total < 8 {
+            full_x.store(&mut p.x);
+            full_dy.store(&mut p.dy);
+            s.i_store(full_at.0, &mut p.at);
+            p.len = total;
+        } else {
+            new_x.store(&mut p.x);
+            new_dy.store(&mut p.dy);
+            s.i_store(new_at.0, &mut p.at);
+            p.len = total - 8;
+            self.interpolate_and_queue(s, f, full_x, full_dy, full_at.0, 8);
         }
     }
 
-    /// Interpolates the first (up to) 8 pending fragments and queues them
-    /// for lighting. Each plane is evaluated as in a block (`origin + dy·rows`,
-    /// then `x·dx +` that), so the values are those of an 8-pixel block.
+    /// Interpolates the pending fragments (fewer than 8, at the end of a
+    /// triangle) and queues them for lighting. Each plane is evaluated as in
+    /// a block (`origin + dy·rows`, then `x·dx +` that), so the values are
+    /// those of an 8-pixel block.
     #[inline(always)]
     pub(super) fn interpolate_pending<S: Simd, Sh: Shader>(&mut self, s: S, f: &Fill<'_, S, Sh>) {
         let p = &mut self.pending;
-        let x = Vf::load(s, p.x[..8].try_into().unwrap());
-        let dy = Vf::load(s, p.dy[..8].try_into().unwrap());
-        let index = s.i_load(p.at[..8].try_into().unwrap());
-        let count = p.len.min(8);
-        // Later positions move to the front.
-        let rest_x = Vf::load(s, p.x[8..].try_into().unwrap());
-        rest_x.store((&mut p.x[..8]).try_into().unwrap());
-        let rest_dy = Vf::load(s, p.dy[8..].try_into().unwrap());
-        rest_dy.store((&mut p.dy[..8]).try_into().unwrap());
-        let rest_at = s.i_load(p.at[8..].try_into().unwrap());
-        s.i_store(rest_at, (&mut p.at[..8]).try_into().unwrap());
-        p.len -= count;
+        let (x, dy, index) = (Vf::load(s, &p.x), Vf::load(s, &p.dy), s.i_load(&p.at));
+        let count = p.len;
+        p.len = 0;
         self.interpolate_and_queue(s, f, x, dy, index, count);
     }
 
@@ -161,19 +166,22 @@ impl Band {
         shader.light_queue(lanes, s, &groups, &mut colors);
         let colors = colors.as_flattened();
         let count = q.len.min(16 * G);
+        let image = &mut self.color[self.color_at..];
         for b in 0..count.div_ceil(8) {
             let n = (count - 8 * b).min(8);
             let colors: &[i32; 8] = colors[8 * b..8 * b + 8].try_into().unwrap();
             let at: &[i32; 8] = q.at[8 * b..8 * b + 8].try_into().unwrap();
             let in_a_row = Vi(s.i_load(at), s).eq_bits(Vi::ramp(s) + Vi::splat(s, at[0]));
-            if n == 8 && in_a_row == 0xff {
-                // Eight fragments in a row (a whole block): one store.
-                let start = at[0] as usize;
-                self.color[self.color_at + start..][..8].copy_from_slice(colors);
-            } else {
+            if n < 8 {
+                // The last few, when the band is done.
                 for i in 0..n {
-                    self.color[self.color_at + at[i] as usize] = colors[i];
+                    image[at[i] as usize] = colors[i];
                 }
+            } else if in_a_row == 0xff {
+                // Eight fragments in a row (a whole block): one store.
+                image[at[0] as usize..][..8].copy_from_slice(colors);
+            } else {
+                scatter(colors, at, image);
             }
         }
         // Later fragments move to the front, keeping their order.
