@@ -510,6 +510,44 @@ async function measure(page, frames, warmup, step) {
   return out;
 }
 
+test('a quick frame leaves the page alone while it is drawn; a slow one dims its caption', async () => {
+  const { page, problems } = await openViewer();
+  await settle(page);
+  // Orbit steps: the panels' figures change no class while the workers draw
+  // (a class change would restyle and repaint the page on the workers' cores).
+  const changes = await page.evaluate(async () => {
+    const figures = window.shadelab.panels.map((p) => p.figure);
+    const seen = [];
+    const observer = new MutationObserver((records) => seen.push(...records.map((r) => r.target.className)));
+    for (const f of figures) observer.observe(f, { attributes: true, attributeFilter: ['class'] });
+    const canvas = figures[0].querySelector('canvas');
+    for (let k = 0; k < 5; k++) {
+      canvas.dispatchEvent(new KeyboardEvent('keydown', { key: 'ArrowRight', bubbles: true, cancelable: true }));
+      await window.shadelab.idle();
+    }
+    await new Promise((r) => setTimeout(r, 300));
+    observer.disconnect();
+    return seen;
+  });
+  assert.deepEqual(changes, []);
+  // A frame still drawn after 150 ms dims the caption until it is done.
+  const dimmed = await page.evaluate(async () => {
+    const p = window.shadelab.panels[0];
+    const has = () => p.figure.classList.contains('busy');
+    p.drawing = true;
+    p.showBusySoon();
+    const soon = has();
+    await new Promise((r) => setTimeout(r, 300));
+    const later = has();
+    p.drawing = false;
+    p.resume();
+    return { soon, later, done: has() };
+  });
+  assert.deepEqual(dimmed, { soon: false, later: true, done: false });
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('frame times: the default scene re-renders each panel within 16 ms', async () => {
   const { page, problems } = await openViewer();
   // The time is the engine's, measured in each worker around the call. Other

@@ -20,6 +20,14 @@ import { joinParts } from './shadelab.js';
 const HISTORY = 240;
 /** The caption's time is the median of this many recent frames. */
 export const CAPTION_FRAMES = 9;
+/**
+ * A frame still being drawn after this long dims its panel's caption
+ * (`busy`). Not at once: the class change makes the page restyle and
+ * repaint while the workers draw, which on a two-core machine takes their
+ * cores (an orbit step took 1.5–3.7 ms longer: BENCHMARKS.md, "The page's
+ * own work during a frame").
+ */
+const BUSY_AFTER_MS = 150;
 
 /** The median of `xs`. */
 export function median(xs) {
@@ -75,6 +83,8 @@ export class Panel {
     this.pending = null;
     /** The pixels' buffer of the last frame painted, given back to the worker for the next. */
     this.spare = null;
+    /** The timer that dims the caption of a slow frame (`showBusySoon`). */
+    this.busyTimer = 0;
     this.times = [];
     /** Each recent frame's `at` (see #draw), as `times`. */
     this.timings = [];
@@ -141,8 +151,20 @@ export class Panel {
   /** After a group's frame: draws what was asked for meanwhile. */
   resume() {
     if (this.drawing) return;
-    if (this.pending !== null) this.#next();
-    else this.figure.classList.remove('busy');
+    if (this.pending !== null) {
+      this.#next();
+      return;
+    }
+    clearTimeout(this.busyTimer);
+    if (this.figure.classList.contains('busy')) this.figure.classList.remove('busy');
+  }
+
+  /** Dims the caption (`busy`) if a frame is still being drawn after BUSY_AFTER_MS. */
+  showBusySoon() {
+    clearTimeout(this.busyTimer);
+    this.busyTimer = setTimeout(() => {
+      if (this.busy) this.figure.classList.add('busy');
+    }, BUSY_AFTER_MS);
   }
 
   /** The buffer of the last frame painted, for the next frame's pixels (once). */
@@ -166,7 +188,7 @@ export class Panel {
     const request = this.pending;
     this.pending = null;
     this.drawing = true;
-    this.figure.classList.add('busy');
+    this.showBusySoon();
     try {
       const { generation, gouraudSpecular, ...msg } = request;
       const spare = this.takeSpare();
@@ -355,7 +377,7 @@ export class PanelGroup {
     this.busy = true;
     for (const p of this.panels) {
       p.groupBusy = true;
-      p.figure.classList.add('busy');
+      p.showBusySoon();
     }
     try {
       const { generation, gouraudSpecular, scene } = request;
