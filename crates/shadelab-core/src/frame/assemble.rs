@@ -42,13 +42,13 @@ use std::ops::Range;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::window::{guard_band, project_vertices, to_window, View};
+use super::window::{guard_band, project_vertices_lanes, to_window, View};
 use crate::clip::{clip_polygon, ClipVertex};
 use crate::mesh::Mesh;
 use crate::normals::face_geometry;
 use crate::raster::{signed_area_ccw, PolygonSink, PolygonSource, Projected, Scratch, VertexStage};
 use crate::scene::{RenderOptions, RenderStats, Scene};
-use crate::simd::prefetch;
+use crate::simd::{dispatch, prefetch, Kernel, Simd, SimdLevel};
 
 /// How many polygons ahead the walk starts loading a polygon's vertices.
 const PREFETCH_AHEAD: usize = 8;
@@ -113,6 +113,21 @@ pub(crate) struct Unprojected<'a> {
     cull_backfaces: bool,
 }
 
+/// [`project_vertices_lanes`] compiled for a SIMD level.
+struct ProjectKernel<'a> {
+    view: &'a View,
+    points: &'a [Vec3],
+    out: &'a mut [Projected],
+}
+
+impl Kernel for ProjectKernel<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<S: Simd>(self, _: S) {
+        project_vertices_lanes(self.view, self.points, self.out);
+    }
+}
+
 impl VertexStage for Unprojected<'_> {
     type Polygons<'p>
         = Assembly<'p>
@@ -123,10 +138,13 @@ impl VertexStage for Unprojected<'_> {
     fn project(&mut self) -> Assembly<'_> {
         let (positions, view) = (self.mesh.positions(), &self.view);
         self.projected.resize(positions.len(), Projected::default());
+        // The geometry's SIMD level, as the tiled setup's: the AVX2 build
+        // where AVX-512 is there too.
+        let level = SimdLevel::detect().without_avx512();
         self.projected
             .par_chunks_mut(4096)
             .zip(positions.par_chunks(4096))
-            .for_each(|(out, points)| project_vertices(view, points, out));
+            .for_each(|(out, points)| dispatch(level, ProjectKernel { view, points, out }));
         Assembly {
             mesh: self.mesh,
             faces: self.faces,
@@ -350,6 +368,7 @@ pub(crate) fn window_area(projected: &[Projected], corners: &[u32]) -> i128 {
 mod tests {
     use glam::Vec3;
 
+    use super::super::window::project_vertices;
     use super::*;
     use crate::camera::Camera;
     use crate::models::{builtin_model, BUILTIN_MODELS};
