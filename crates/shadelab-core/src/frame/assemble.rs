@@ -42,13 +42,13 @@ use std::ops::Range;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::window::{guard_band, project_vertices_lanes, to_window, View};
+use super::window::{guard_band, to_window, ProjectKernel, View};
 use crate::clip::{clip_polygon, ClipVertex};
 use crate::mesh::Mesh;
 use crate::normals::face_geometry;
 use crate::raster::{signed_area_ccw, PolygonSink, PolygonSource, Projected, Scratch, VertexStage};
 use crate::scene::{RenderOptions, RenderStats, Scene};
-use crate::simd::{dispatch, prefetch, Kernel, Simd, SimdLevel};
+use crate::simd::{dispatch, prefetch, SimdLevel};
 
 /// How many polygons ahead the walk starts loading a polygon's vertices.
 const PREFETCH_AHEAD: usize = 8;
@@ -111,21 +111,6 @@ pub(crate) struct Unprojected<'a> {
     projected: &'a mut Vec<Projected>,
     view: View,
     cull_backfaces: bool,
-}
-
-/// [`project_vertices_lanes`] compiled for a SIMD level.
-struct ProjectKernel<'a> {
-    view: &'a View,
-    points: &'a [Vec3],
-    out: &'a mut [Projected],
-}
-
-impl Kernel for ProjectKernel<'_> {
-    type Output = ();
-    #[inline(always)]
-    fn run<S: Simd>(self, _: S) {
-        project_vertices_lanes(self.view, self.points, self.out);
-    }
 }
 
 impl VertexStage for Unprojected<'_> {

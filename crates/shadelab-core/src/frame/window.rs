@@ -14,6 +14,7 @@ use glam::{Mat4, Vec3, Vec4};
 
 use crate::clip::{is_inside, ClipVertex};
 use crate::raster::{snap, Projected, ScreenVertex};
+use crate::simd::{Kernel, Simd};
 
 /// Where a frame's positions land: the camera's transform and the window.
 #[derive(Debug, Clone, Copy)]
@@ -65,10 +66,10 @@ const LANES: usize = 8;
 /// vector lanes: each vertex's clip-space position as before, then the
 /// inside test, the divide, the viewport and the snapping for all eight,
 /// with selects instead of branches. Run inside [`crate::simd::dispatch`]
-/// (`ProjectKernel` in `assemble.rs`) it compiles to AVX2 `f64` lanes (the
-/// AVX-512 build measured the same); one vertex at a time, it was a tenth
-/// of the bunny's 512×512 Gouraud frame (BENCHMARKS.md, "The vertex stage
-/// in lanes").
+/// ([`ProjectKernel`], as the vertex stage in `assemble.rs` runs it), it
+/// compiles to AVX2 `f64` lanes (the AVX-512 build measured the same); one
+/// vertex at a time, it was a tenth of the bunny's 512×512 Gouraud frame
+/// (BENCHMARKS.md, "The vertex stage in lanes").
 ///
 /// The snapped coordinates are computed in `i32`, not `i64` as [`snap`]
 /// does: [`to_window`] clamps the window coordinate to ±2^21 pixels, so
@@ -120,6 +121,22 @@ pub(crate) fn project_vertices_lanes(view: &View, points: &[Vec3], out: &mut [Pr
     project_vertices(view, ins.remainder(), outs.into_remainder());
 }
 
+/// [`project_vertices_lanes`] compiled for a SIMD level (through
+/// [`crate::simd::dispatch`]).
+pub(crate) struct ProjectKernel<'a> {
+    pub(crate) view: &'a View,
+    pub(crate) points: &'a [Vec3],
+    pub(crate) out: &'a mut [Projected],
+}
+
+impl Kernel for ProjectKernel<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<S: Simd>(self, _: S) {
+        project_vertices_lanes(self.view, self.points, self.out);
+    }
+}
+
 /// [`snap`] for a coordinate within ±2^21 pixels, in `i32`.
 #[inline(always)]
 fn snap_i32(pixels: f64) -> i32 {
@@ -163,20 +180,7 @@ mod tests {
     use glam::{Mat4, Vec3};
 
     use super::*;
-    use crate::simd::{dispatch, Kernel, Simd, SimdLevel};
-
-    struct Lanes<'a> {
-        view: &'a View,
-        points: &'a [Vec3],
-        out: &'a mut [Projected],
-    }
-
-    impl Kernel for Lanes<'_> {
-        type Output = ();
-        fn run<S: Simd>(self, _: S) {
-            project_vertices_lanes(self.view, self.points, self.out);
-        }
-    }
+    use crate::simd::{dispatch, SimdLevel};
 
     /// Points of every kind: near and far, behind the eye, on and past the
     /// guard band, huge, infinite and NaN, and in counts that leave each
@@ -244,7 +248,7 @@ mod tests {
                         let mut got = vec![Projected::default(); len];
                         dispatch(
                             level,
-                            Lanes {
+                            ProjectKernel {
                                 view: &view,
                                 points,
                                 out: &mut got,
