@@ -56,7 +56,7 @@ const PREFETCH_AHEAD: usize = 8;
 /// A frame's geometry, kept from frame to frame: each polygon's unit face
 /// normal and centroid (recomputed only when the mesh's geometry changes) and each
 /// position's window position (the vertex stage, every frame).
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub(crate) struct Geometry {
     /// The geometry the face normals are of ([`Mesh::geometry_id`], 0: none).
     key_geometry: u64,
@@ -64,9 +64,31 @@ pub(crate) struct Geometry {
     /// Each polygon's centroid, kept with its face normal.
     centroids: Vec<Vec3>,
     projected: Vec<Projected>,
+    /// The vertex stage's SIMD level: the renderer's, but the AVX2 build
+    /// where AVX-512 is there too, as the tiled setup's.
+    level: SimdLevel,
+}
+
+impl Default for Geometry {
+    /// The best SIMD level of this CPU.
+    fn default() -> Geometry {
+        Geometry::with_simd(SimdLevel::detect())
+    }
 }
 
 impl Geometry {
+    /// Geometry whose vertex stage runs at `level` (one this CPU has: see
+    /// [`SimdLevel::is_supported`]).
+    pub(crate) fn with_simd(level: SimdLevel) -> Geometry {
+        Geometry {
+            key_geometry: 0,
+            faces: Vec::new(),
+            centroids: Vec::new(),
+            projected: Vec::new(),
+            level: level.without_avx512(),
+        }
+    }
+
     /// The frame's polygons of `scene` drawn with `options`, the face
     /// normals brought up to date; the vertex stage is the rasterizer's to
     /// run ([`VertexStage::project`]).
@@ -84,6 +106,7 @@ impl Geometry {
             faces: &self.faces,
             centroids: &self.centroids,
             projected: &mut self.projected,
+            level: self.level,
             view: View {
                 view_projection: scene.camera.projection(aspect) * scene.camera.view(),
                 width,
@@ -109,6 +132,7 @@ pub(crate) struct Unprojected<'a> {
     faces: &'a [Option<Vec3>],
     centroids: &'a [Vec3],
     projected: &'a mut Vec<Projected>,
+    level: SimdLevel,
     view: View,
     cull_backfaces: bool,
 }
@@ -123,9 +147,7 @@ impl VertexStage for Unprojected<'_> {
     fn project(&mut self) -> Assembly<'_> {
         let (positions, view) = (self.mesh.positions(), &self.view);
         self.projected.resize(positions.len(), Projected::default());
-        // The geometry's SIMD level, as the tiled setup's: the AVX2 build
-        // where AVX-512 is there too.
-        let level = SimdLevel::detect().without_avx512();
+        let level = self.level;
         self.projected
             .par_chunks_mut(4096)
             .zip(positions.par_chunks(4096))
@@ -540,6 +562,21 @@ mod tests {
         assert!(
             clipped > 100 && backs > 100,
             "{clipped} clipped, {backs} back faces"
+        );
+    }
+
+    /// The vertex stage runs at the renderer's SIMD level (so `shadelab
+    /// bench --simd portable` times a portable frame), at AVX2 where that
+    /// is AVX-512 (as setup), and at the best this CPU has by default.
+    #[test]
+    fn the_vertex_stage_runs_at_the_renderers_level() {
+        for level in SimdLevel::supported() {
+            let renderer = crate::frame::Renderer::with_simd(level);
+            assert_eq!(renderer.geometry.level, level.without_avx512());
+        }
+        assert_eq!(
+            Geometry::default().level,
+            SimdLevel::detect().without_avx512()
         );
     }
 }

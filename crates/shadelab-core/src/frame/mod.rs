@@ -121,10 +121,11 @@ impl Renderer {
 
     /// A renderer using `level` (or the portable path if the CPU lacks it).
     pub fn with_simd(level: SimdLevel) -> Renderer {
+        let tiled = TiledRasterizer::new(level);
         Renderer {
-            tiled: TiledRasterizer::new(level),
+            geometry: Geometry::with_simd(tiled.simd()),
+            tiled,
             scanline: ScanlineRasterizer,
-            geometry: Geometry::default(),
             lighting: Lighting {
                 ambient: Rgb::default(),
                 lights: Vec::new(),
