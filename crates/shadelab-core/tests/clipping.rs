@@ -8,7 +8,8 @@ use common::*;
 use glam::{DVec3, Vec3};
 use shadelab_core::{
     builtin_model, coverage, render, vertex_normals, Camera, CameraError, CornerNormals,
-    Interpolation, Mesh, MeshError, NormalWeighting, RenderError, RenderOptions, Scene, Shading,
+    Interpolation, Mesh, MeshError, NormalWeighting, Rasterizer, RenderError, RenderOptions, Scene,
+    Shading,
 };
 
 fn smooth(mesh: Mesh, camera: Camera) -> Scene {
@@ -612,4 +613,40 @@ mod near_plane {
             prop_assert!((kept - expected).abs() < 1e-4, "kept {kept}, expected {expected}, distances {d:?}");
         }
     }
+}
+
+/// A triangle with coordinates up to 5e33 that clipping turns into a
+/// polygon winding twice round the apex the fan would have started from
+/// (found by `extremes::never_panics`): each pixel is drawn at most once,
+/// by both rasterizers, and both cover the same 82 pixels.
+#[test]
+fn a_polygon_clipping_makes_wind_twice_is_drawn_once_per_pixel() {
+    let corners = vec![
+        Vec3::new(-2.949_222_2e21, 1.0, 7.678_203_7e27),
+        Vec3::new(1.0, 1.0, -5.381_456e33),
+        Vec3::new(1.0, 1.0, 2.685_232e30),
+    ];
+    let cam = Camera {
+        eye: Vec3::new(-2.849_584, -0.984_042_3, -3.133_278_1),
+        target: Vec3::new(2.553_940_3, 2.973_986, 4.374_611),
+        up: Vec3::Y,
+        fov_y_degrees: 70.0,
+        near: 1.0,
+        far: 259.497_4,
+    };
+    let mesh = Mesh::from_polygons(corners, [[0u32, 1, 2]]).unwrap();
+    let scene = smooth(mesh, cam);
+    let mut covered = Vec::new();
+    for rasterizer in [Rasterizer::Scanline, Rasterizer::Tiled] {
+        let options = RenderOptions {
+            cull_backfaces: false,
+            rasterizer,
+            ..options(40, 30, Shading::Flat)
+        };
+        let counts = coverage(&scene, &options).unwrap();
+        assert!(counts.iter().all(|&c| c <= 1), "{rasterizer:?}");
+        covered.push(counts);
+    }
+    assert_eq!(covered[0], covered[1]);
+    assert_eq!(covered[0].iter().filter(|&&c| c == 1).count(), 82);
 }

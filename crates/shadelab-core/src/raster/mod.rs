@@ -201,8 +201,19 @@ pub struct Fan {
 }
 
 /// The fan both rasterizers use for a counter-clockwise polygon: from the
-/// first vertex whose fan has no clockwise triangle, which is vertex 0 for
-/// every convex polygon.
+/// first vertex whose fan has no clockwise triangle and goes round it at
+/// most once, which is vertex 0 for every convex polygon. Where there is
+/// none, the first counter-clockwise fan that goes round more than once,
+/// else the fan from vertex 0, drawn once per pixel.
+///
+/// Triangles that all turn counter-clockwise about the apex still overlap
+/// when their angles there add up to a full turn or more: a polygon that
+/// clipping of absurd coordinates made wind twice round the apex (found by
+/// `tests/clipping.rs`, `extremes::never_panics`: five pixels drawn twice).
+/// With four vertices that cannot happen (two angles of at most half a
+/// turn each, the second one's triangle empty if both are half a turn), so
+/// only polygons of five or more vertices, which only clipping makes in a
+/// mesh of triangles and quads, pay for the angles.
 pub fn fan<const N: usize>(polygon: &[ScreenVertex<N>]) -> Fan {
     let n = polygon.len();
     let fan = |apex: usize| Fan {
@@ -212,16 +223,40 @@ pub fn fan<const N: usize>(polygon: &[ScreenVertex<N>]) -> Fan {
     if n <= 3 {
         return fan(0);
     }
-    (0..n)
-        .map(fan)
-        .find(|f| f.triangles(polygon).all(|t| signed_area_ccw(&t) >= 0))
-        .unwrap_or(Fan {
-            apex: 0,
-            once_per_pixel: true,
-        })
+    // The first apex whose fan turns counter-clockwise but round it more
+    // than once: drawn once per pixel, if no apex is better.
+    let mut wrapping = None;
+    for apex in 0..n {
+        let f = fan(apex);
+        if !f.triangles(polygon).all(|t| signed_area_ccw(&t) >= 0) {
+            continue;
+        }
+        if n <= 4 || f.turn(polygon) < std::f64::consts::TAU * (1.0 - 1e-9) {
+            return f;
+        }
+        wrapping.get_or_insert(apex);
+    }
+    Fan {
+        apex: wrapping.unwrap_or(0),
+        once_per_pixel: true,
+    }
 }
 
 impl Fan {
+    /// The angles of the fan's triangles at the apex added up, in radians,
+    /// each in `[0, π]` for a counter-clockwise triangle: below a full turn
+    /// (with a margin for rounding), the triangles do not overlap.
+    fn turn<const N: usize>(self, polygon: &[ScreenVertex<N>]) -> f64 {
+        self.triangles(polygon)
+            .map(|[a, b, c]| {
+                let (ux, uy) = ((b.x - a.x) as f64, (b.y - a.y) as f64);
+                let (vx, vy) = ((c.x - a.x) as f64, (c.y - a.y) as f64);
+                // Window y points down: counter-clockwise is a negative cross product.
+                (uy * vx - ux * vy).atan2(ux * vx + uy * vy)
+            })
+            .sum()
+    }
+
     /// The fan's triangles, in order, counter-clockwise like the polygon.
     pub fn triangles<'a, const N: usize>(
         self,
