@@ -223,15 +223,35 @@ pub fn fan<const N: usize>(polygon: &[ScreenVertex<N>]) -> Fan {
     if n <= 3 {
         return fan(0);
     }
+    let counter_clockwise = |f: &Fan| f.triangles(polygon).all(|t| signed_area_ccw(&t) >= 0);
+    if n > 4 {
+        return fan_of_many(polygon, counter_clockwise);
+    }
+    (0..n).map(fan).find(counter_clockwise).unwrap_or(Fan {
+        apex: 0,
+        once_per_pixel: true,
+    })
+}
+
+/// [`fan`] of a polygon of five or more vertices, whose fan's angles must
+/// be added up: kept out of line, off the path of every quad.
+#[inline(never)]
+fn fan_of_many<const N: usize>(
+    polygon: &[ScreenVertex<N>],
+    counter_clockwise: impl Fn(&Fan) -> bool,
+) -> Fan {
     // The first apex whose fan turns counter-clockwise but round it more
     // than once: drawn once per pixel, if no apex is better.
     let mut wrapping = None;
-    for apex in 0..n {
-        let f = fan(apex);
-        if !f.triangles(polygon).all(|t| signed_area_ccw(&t) >= 0) {
+    for apex in 0..polygon.len() {
+        let f = Fan {
+            apex,
+            once_per_pixel: false,
+        };
+        if !counter_clockwise(&f) {
             continue;
         }
-        if n <= 4 || f.turn(polygon) < std::f64::consts::TAU * (1.0 - 1e-9) {
+        if f.turn(polygon) < std::f64::consts::TAU * (1.0 - 1e-9) {
             return f;
         }
         wrapping.get_or_insert(apex);
