@@ -93,8 +93,10 @@ export class Shadelab {
    * (`shadelab_render_methods_part`): the answer's `rows` = [first, end]
    * says which, each frame's `pixels` hold those rows, and its counts are
    * the frame's but for its rows' pixels (`stats.fragments_shaded`,
-   * `stats.covered_pixels`, `cost.per_pixel`, in `stats.lighting_evaluations`
-   * too), which the parts add up to (see `joinParts`). No last frame is kept.
+   * `stats.covered_pixels`, `cost.per_pixel`) and for flat's evaluations
+   * (`cost.per_polygon`: those of the polygons whose top row the part holds),
+   * both in `stats.lighting_evaluations` too, which the parts add up to (see
+   * `joinParts`). No last frame is kept.
    */
   renderMethods(sceneToml, spares = [], part = null) {
     const text = encoder.encode(sceneToml);
@@ -207,7 +209,7 @@ export class Shadelab {
  * One frame from its parts (`renderMethods` with `part`), each `{frame,
  * rows}` with `frame` one method's part: the rows one under the other, in
  * `spare` when it is an ArrayBuffer of the frame's size, and the parts'
- * pixel counts added up. A part drawn whole (rows from 0 to the height: a
+ * pixel counts and flat's evaluations added up. A part drawn whole (rows from 0 to the height: a
  * mode of the scanline rasterizer) is the frame.
  */
 export function joinParts(parts, spare = null) {
@@ -220,6 +222,7 @@ export function joinParts(parts, spare = null) {
   const sum = (read) => drawn.reduce((total, { frame }) => total + read(frame), 0);
   for (const { frame, rows } of drawn) pixels.set(frame.pixels, rows[0] * first.width * 4);
   const perPixel = sum((f) => f.cost.per_pixel);
+  const perPolygon = sum((f) => f.cost.per_polygon);
   return {
     ...first,
     pixels,
@@ -227,8 +230,8 @@ export function joinParts(parts, spare = null) {
       ...first.stats,
       fragments_shaded: sum((f) => f.stats.fragments_shaded),
       covered_pixels: sum((f) => f.stats.covered_pixels),
-      lighting_evaluations: first.stats.lighting_evaluations - first.cost.per_pixel + perPixel,
+      lighting_evaluations: perPolygon + first.cost.per_vertex + perPixel,
     },
-    cost: { ...first.cost, per_pixel: perPixel },
+    cost: { ...first.cost, per_polygon: perPolygon, per_pixel: perPixel },
   };
 }

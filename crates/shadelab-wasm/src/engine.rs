@@ -279,10 +279,12 @@ impl Engine {
     /// (rows `0..height`); the other parts then draw nothing (empty rows).
     ///
     /// Each frame's counts are the whole frame's, but for those of its rows'
-    /// pixels: `stats.fragments_shaded`, `stats.covered_pixels` and
-    /// `cost.per_pixel` (which `stats.lighting_evaluations` includes), which
-    /// the parts add up to. A part is not a frame the instruments can read:
-    /// the engine keeps no last frame after it.
+    /// pixels (`stats.fragments_shaded`, `stats.covered_pixels` and
+    /// `cost.per_pixel`) and flat's evaluations (`cost.per_polygon`: of the
+    /// polygons whose top pixel row the part holds), both included in
+    /// `stats.lighting_evaluations`, which the parts add up to. A part is
+    /// not a frame the instruments can read: the engine keeps no last frame
+    /// after it.
     ///
     /// # Errors
     /// As [`Engine::render`], and when `part` is not below `parts`.

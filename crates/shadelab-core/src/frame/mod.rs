@@ -197,10 +197,14 @@ impl Renderer {
     /// the rows are counted but not set up; the bytes are those of the
     /// whole frame's rows.
     ///
-    /// Each part's statistics count the whole frame's polygons (and flat's
-    /// and Gouraud's lighting evaluations, per polygon and per vertex) and
-    /// its own rows' pixels: `fragments_shaded`, `covered_pixels` and
-    /// Phong's `lighting_evaluations` of the parts add up to the frame's.
+    /// Each part's statistics count the whole frame's polygons (and
+    /// Gouraud's lighting evaluations, per vertex) and its own rows' pixels:
+    /// `fragments_shaded`, `covered_pixels` and Phong's
+    /// `lighting_evaluations` of the parts add up to the frame's. So do
+    /// flat's `lighting_evaluations`: a polygon's is counted by the part
+    /// holding the top row of its pixels (by the first part for a polygon
+    /// that needed clipping or is drawn as a back face), so that no part
+    /// sets up triangles outside its rows to count them.
     ///
     /// The modes only the scanline rasterizer draws are drawn whole: the
     /// rows drawn are returned (then `0..height`, with the frame's counts).

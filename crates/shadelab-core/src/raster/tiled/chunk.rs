@@ -66,9 +66,8 @@ pub(super) struct Frame<'a> {
     pub(super) lit: &'a [[f32; 3]],
     pub(super) lit_back: &'a [[f32; 3]],
     pub(super) bands: usize,
-    /// The image rows drawn (whole bands): triangles outside them are
-    /// counted, and flat lights their polygons, but they get no planes and
-    /// no bins.
+    /// The image rows drawn (whole bands): polygons outside them are
+    /// counted, but their triangles get no edges, planes or bins.
     pub(super) rows: std::ops::Range<i32>,
 }
 
@@ -151,6 +150,19 @@ impl Frame<'_> {
         t.y1 > self.rows.start && t.y0 < self.rows.end
     }
 
+    /// Whether this part counts flat's lighting of a front polygon whose
+    /// pixels' top row is `y0` (of the rows drawn, or of the image for a
+    /// polygon `None`): a polygon is counted by the part that holds its top
+    /// row (the first part, for those set up whole), so that the parts'
+    /// counts add up to the frame's even where their triangles span parts.
+    #[inline(always)]
+    fn counts_flat(&self, y0: Option<i32>) -> bool {
+        match y0 {
+            Some(y0) => y0 >= self.rows.start,
+            None => self.rows.start == 0,
+        }
+    }
+
     pub(super) fn attr_count(&self) -> usize {
         match self.method {
             Some(Shading::Flat) => 0,
@@ -167,6 +179,8 @@ struct Setup<'a, 'f, const A: usize> {
     frame: &'a Frame<'f>,
     bins: &'a mut [Bin],
     flat_surfaces: &'a mut Vec<[f32; 6]>,
+    /// Flat's lighting evaluations this part counts (see `Frame::counts_flat`).
+    flat_evaluations: u64,
 }
 
 impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
@@ -196,13 +210,19 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
         let options = frame.options;
         let x = p.map(|p| i64::from(p.x));
         let y = p.map(|p| i64::from(p.y));
-        let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
+        // The rows first: about half of a frame's triangles are outside
+        // each of two parts, and their edges cost more than the walk up to
+        // here (a part of 16 empty rows of the dragon's frame: 4.1 ms with
+        // them, 2.8 without, WebAssembly).
+        let rows = frame.rows.clone();
+        let Some(mut t) = Triangle::edges_in_rows(x, y, options.width, options.height, rows) else {
             return;
         };
         if t.covers_no_centre() {
             return;
         }
         if A == 0 || A == ALL_ATTRS {
+            self.flat_evaluations += u64::from(frame.counts_flat(Some(t.y0)));
             // As `flat_surface`, for a front face.
             let c = frame.centroids[face];
             self.flat_surfaces
@@ -263,6 +283,7 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
 impl<const A: usize> Setup<'_, '_, A> {
     /// Queues a polygon for flat lighting; returns its index.
     fn flat_surface(&mut self, face: usize, normal: Vec3, back: bool) -> u32 {
+        self.flat_evaluations += u64::from(self.frame.counts_flat(None));
         let n = if back { -normal } else { normal };
         let p = self.frame.centroids[face];
         self.flat_surfaces.push([n.x, n.y, n.z, p.x, p.y, p.z]);
@@ -307,8 +328,10 @@ impl Chunk {
             frame,
             bins: &mut self.bins,
             flat_surfaces: &mut self.flat_surfaces,
+            flat_evaluations: 0,
         };
         polygons.walk(faces, &mut self.scratch, &mut sink, &mut self.stats);
+        self.stats.lighting_evaluations += sink.flat_evaluations;
         if frame.lights_polygons() {
             self.light_flat_polygons(frame);
         }
@@ -318,7 +341,6 @@ impl Chunk {
     /// `flat_colors` (a flat triangle's `color` is its index there: the
     /// band looks it up, see `BandKernel`).
     pub(super) fn light_flat_polygons(&mut self, frame: &Frame<'_>) {
-        self.stats.lighting_evaluations += self.flat_surfaces.len() as u64;
         self.flat_colors.clear();
         self.flat_colors
             .resize(self.flat_surfaces.len().next_multiple_of(8), 0);

@@ -66,9 +66,13 @@
 //! * **A part of the rows, for threads of their own.** The viewer's
 //!   WebAssembly has one thread per worker; two workers each draw half the
 //!   rows of the three frames. Every polygon is still projected, faced and
-//!   counted (the counts stay the frame's), but one outside the part's rows
-//!   gets no attributes, planes or bins, and only the part's bands are
-//!   walked: the bytes are those of the frame's rows.
+//!   counted (the counts stay the frame's), but a triangle outside the
+//!   part's rows gets no edges, attributes, planes or bins, and only the
+//!   part's bands are walked: the bytes are those of the frame's rows. So
+//!   that no part needs the edges of triangles it does not draw, flat's
+//!   lighting of a polygon is counted by the part holding its top pixel
+//!   row (`Frame::counts_flat`): those counts add up over the parts, like
+//!   the pixels'.
 
 mod band;
 mod chunk;
@@ -373,8 +377,11 @@ impl TiledRasterizer {
     /// Only rows `rows` are drawn (whole bands: `rows.start` a multiple of
     /// [`BAND_ROWS`], `rows.end` too or the image's height), into images
     /// of those rows; triangles wholly outside them get no planes and no
-    /// bins. Every polygon's counts are the frame's; the pixels' counts
-    /// (fragments, covered pixels, Phong's evaluations) are the rows'.
+    /// bins. Every polygon's counts are the frame's, and so are Gouraud's
+    /// evaluations; the pixels' counts (fragments, covered pixels, Phong's
+    /// evaluations) are the rows', and flat's evaluations those of the
+    /// polygons whose top pixel row is among them (the first part's too for
+    /// polygons set up whole): they add up over the parts.
     pub fn render_methods<V: VertexStage>(
         &mut self,
         vertices: &mut V,
@@ -444,8 +451,9 @@ impl TiledRasterizer {
     /// three methods') and the image rows `rows` (whole bands; triangles
     /// outside them are counted, not set up); leaves the bins in
     /// `self.chunks`.
-    /// The statistics' lighting evaluations are the frame's (flat's and
-    /// Gouraud's when all three), also kept in `self.evaluations`.
+    /// The statistics' lighting evaluations are flat's (those the rows
+    /// count: see `render_methods`) and Gouraud's (the frame's), also kept
+    /// in `self.evaluations`.
     fn geometry<V: VertexStage>(
         &mut self,
         vertices: &mut V,

@@ -106,9 +106,23 @@ impl Triangle {
     /// centre of the image lies within its bounding box.
     #[inline(always)]
     pub fn edges(x: [i64; 3], y: [i64; 3], width: u32, height: u32) -> Option<Triangle> {
+        Triangle::edges_in_rows(x, y, width, height, 0..height as i32)
+    }
+
+    /// [`Triangle::edges`], or `None` as soon as the box is found to have
+    /// no row among `rows` (a part of the image drawn by a thread of its
+    /// own): the edges of a triangle outside a part are not needed.
+    #[inline(always)]
+    pub fn edges_in_rows(
+        x: [i64; 3],
+        y: [i64; 3],
+        width: u32,
+        height: u32,
+        rows: std::ops::Range<i32>,
+    ) -> Option<Triangle> {
         let (y_min, y_max) = (y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]));
         let (y0, y1) = centres(y_min, y_max, height);
-        if y0 >= y1 {
+        if y0 >= y1 || y1 <= i64::from(rows.start) || y0 >= i64::from(rows.end) {
             return None;
         }
         let (x_min, x_max) = (x[0].min(x[1]).min(x[2]), x[0].max(x[1]).max(x[2]));
