@@ -31,6 +31,13 @@ const SCHEMA = await fetch(new URL('../params.json', import.meta.url)).then((res
   return response.json();
 });
 
+/** The shading methods, in the order the page shows their panels: the core's `render.shading` choice. */
+export const METHODS = (() => {
+  const shading = SCHEMA.choices.find((c) => c.key === 'render.shading');
+  if (!shading) throw new Error('params.json has no choice render.shading');
+  return shading.values.map((v) => v.name);
+})();
+
 /** The groups of controls, in the order the page shows them. */
 export const GROUPS = ['model', 'ambient', 'lights', 'material', 'camera', 'shading', 'polygons', 'view'];
 

@@ -3,10 +3,9 @@
 // the scene file (TOML) every panel renders, which is exactly what
 // `shadelab render` / `shadelab compare` read.
 
-import { PARAMS, MAX_LIGHTS, param, applies, defaultLight, getPath, setPath, valid, formatLink, parseLink } from './params.js';
+import { PARAMS, METHODS, MAX_LIGHTS, param, applies, defaultLight, getPath, setPath, valid, formatLink, parseLink } from './params.js';
 
-export { MAX_LIGHTS, defaultLight };
-export const METHODS = ['flat', 'gouraud', 'phong'];
+export { METHODS, MAX_LIGHTS, defaultLight };
 export const LANGUAGES = ['en', 'ru', 'sk', 'cs'];
 /** The overlays, named as `shadelab render --overlay` names them. */
 export const OVERLAYS = ['wireframe', 'face-normals', 'vertex-normals', 'light'];

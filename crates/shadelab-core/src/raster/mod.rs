@@ -209,7 +209,7 @@ pub struct Fan {
 /// Triangles that all turn counter-clockwise about the apex still overlap
 /// when their angles there add up to a full turn or more: a polygon that
 /// clipping of absurd coordinates made wind twice round the apex (found by
-/// `tests/clipping.rs`, `extremes::never_panics`: five pixels drawn twice).
+/// `tests/extremes.rs`, `extremes::never_panics`: five pixels drawn twice).
 /// With four vertices that cannot happen (two angles of at most half a
 /// turn each, the second one's triangle empty if both are half a turn), so
 /// only polygons of five or more vertices, which only clipping makes in a

@@ -9,11 +9,14 @@
 #![allow(dead_code)]
 
 mod coverage;
+mod floor;
 mod images;
 
 // Each test binary uses some of these.
 #[allow(unused_imports)]
 pub use coverage::*;
+#[allow(unused_imports)]
+pub use floor::*;
 #[allow(unused_imports)]
 pub use images::*;
 

@@ -229,9 +229,6 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
                 .push([normal.x, normal.y, normal.z, c.x, c.y, c.z]);
             t.color = (self.flat_surfaces.len() - 1) as u32;
         }
-        if !frame.draws(&t) {
-            return;
-        }
         let vertex = |k: usize| p[k].vertex(frame.front_attrs::<A>(first_corner + k));
         let v: [ScreenVertex<A>; 3] = [vertex(0), vertex(1), vertex(2)];
         let planes = t.planes(&v, A, options.interpolation);
