@@ -3,19 +3,10 @@
 // `refresh()` brings every control back in line with the state (after a
 // preset, a reset, a drag on a panel or a link).
 import { t } from './i18n.js';
-import { el } from './dom.js';
+import { el, put } from './dom.js';
 
 let uid = 0;
 const nextId = (name) => `c-${name}-${++uid}`;
-
-/**
- * Sets `target[prop]` only when it differs: refresh() runs after every
- * change (each orbit step), and writing a control's value, bounds or text
- * even unchanged makes the browser lay the page out again.
- */
-function put(target, prop, value) {
-  if (target[prop] !== value) target[prop] = value;
-}
 
 const toHex = (c) => `#${c.map((v) => Math.round(v).toString(16).padStart(2, '0')).join('')}`;
 const fromHex = (h) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16));

@@ -19,6 +19,15 @@ export function el(tag, attrs = {}, children = []) {
   return e;
 }
 
+/**
+ * Sets `target[prop]` only when it differs: what runs after every frame or
+ * change (each orbit step) would otherwise make the browser lay the page
+ * out again for a value, bound or text it already has.
+ */
+export function put(target, prop, value) {
+  if (target[prop] !== value) target[prop] = value;
+}
+
 const beforePaint = new Set();
 /** When the work waiting for the next animation frame was first asked for. */
 let waitingSince = 0;

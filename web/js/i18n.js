@@ -88,17 +88,36 @@ export function translateDocument(root = document) {
  * `{n}` the count formatted as the page shows counts.
  */
 export function plural(key, n, values = {}) {
-  const category = new Intl.PluralRules(t('app.locale')).select(n);
+  const locale = t('app.locale');
+  const category = made(`plural ${locale}`, () => new Intl.PluralRules(locale)).select(n);
   const form = `${key}.${category}` in table ? `${key}.${category}` : `${key}.other`;
   return t(form, { n: formatCount(n), ...values });
 }
 
 /** Formats an integer with the language's grouping, as the page shows counts. */
 export function formatCount(n) {
-  return Number(n).toLocaleString(t('app.locale'));
+  const locale = t('app.locale');
+  return made(`count ${locale}`, () => new Intl.NumberFormat(locale)).format(Number(n));
 }
 
 /** Formats a number with `digits` decimals in the language's style (decimal comma in ru, sk, cs). */
 export function formatNumber(x, digits) {
-  return Number(x).toLocaleString(t('app.locale'), { minimumFractionDigits: digits, maximumFractionDigits: digits, useGrouping: false });
+  const locale = t('app.locale');
+  const options = { minimumFractionDigits: digits, maximumFractionDigits: digits, useGrouping: false };
+  return made(`number ${locale} ${digits}`, () => new Intl.NumberFormat(locale, options)).format(Number(x));
+}
+
+const intl = new Map();
+/**
+ * The `Intl` object named `key`, made by `make` the first time: making one
+ * costs far more than using it, and the captions use them for every frame
+ * (`toLocaleString` makes a new one on each call).
+ */
+function made(key, make) {
+  let object = intl.get(key);
+  if (object === undefined) {
+    object = make();
+    intl.set(key, object);
+  }
+  return object;
 }

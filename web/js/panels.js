@@ -12,7 +12,7 @@
 // halves are joined here; with one, the first panel's worker draws them
 // whole. Its frames reach each panel as its own would.
 import { t, plural, formatCount, formatNumber } from './i18n.js';
-import { el, beforeNextPaint, paintPending } from './dom.js';
+import { el, put, beforeNextPaint, paintPending } from './dom.js';
 import { Marks } from './marks.js';
 import { joinParts } from './shadelab.js';
 
@@ -272,39 +272,44 @@ export class Panel {
   relabel() {
     const f = this.last;
     if (!f) return;
+    // Only what changed is written (`put`): the caption is rewritten for
+    // every frame, and a text set again, even unchanged, is laid out again.
     if (this.variantEl) {
       const key = f.gouraudSpecular ? 'panel.gouraud.specular' : 'panel.gouraud.noSpecular';
-      this.variantEl.textContent = t(key);
-      this.variantEl.title = t(`${key}.title`);
-      this.variantEl.dataset.specular = String(!!f.gouraudSpecular);
+      put(this.variantEl, 'textContent', t(key));
+      put(this.variantEl, 'title', t(`${key}.title`));
+      put(this.variantEl.dataset, 'specular', String(!!f.gouraudSpecular));
     }
     const { ms, frames } = this.captionTime();
     // A group's frame took the time of the three panels together.
     const label = f.together ? 'panel.time.together' : 'panel.time';
-    this.timeEl.replaceChildren(
-      el('span', { class: 'time-label', text: plural(`${label}.label`, frames) }),
-      el('span', { class: 'time-value', text: t('panel.time', { ms: formatNumber(ms, 1) }) }),
-    );
-    this.timeEl.title = plural(`${label}.title`, frames);
-    this.timeEl.dataset.together = String(!!f.together);
-    this.rasterEl.textContent = t(`panel.raster.${f.rasterizer}`);
-    this.rasterEl.dataset.rasterizer = f.rasterizer;
-    this.rasterEl.title = t(`panel.raster.${f.rasterizer}.title`);
+    if (!this.timeLabelEl) {
+      this.timeLabelEl = el('span', { class: 'time-label' });
+      this.timeValueEl = el('span', { class: 'time-value' });
+      this.timeEl.replaceChildren(this.timeLabelEl, this.timeValueEl);
+    }
+    put(this.timeLabelEl, 'textContent', plural(`${label}.label`, frames));
+    put(this.timeValueEl, 'textContent', t('panel.time', { ms: formatNumber(ms, 1) }));
+    put(this.timeEl, 'title', plural(`${label}.title`, frames));
+    put(this.timeEl.dataset, 'together', String(!!f.together));
+    put(this.rasterEl, 'textContent', t(`panel.raster.${f.rasterizer}`));
+    put(this.rasterEl.dataset, 'rasterizer', f.rasterizer);
+    put(this.rasterEl, 'title', t(`panel.raster.${f.rasterizer}.title`));
     if (f.errors) {
       const e = f.errors;
-      this.statsEl.textContent = t('panel.errors', {
+      put(this.statsEl, 'textContent', t('panel.errors', {
         mean: formatNumber(e.mean, 2),
         max: formatNumber(e.max, 1),
         compared: formatCount(e.compared),
-      });
+      }));
       return;
     }
     const s = f.stats;
-    this.statsEl.textContent = t(`panel.stats.${this.method}`, {
+    put(this.statsEl, 'textContent', t(`panel.stats.${this.method}`, {
       evaluations: plural('count.evaluations', s.lighting_evaluations),
       polygons: plural('count.polygonsDrawn', s.rasterized),
       pixels: plural('count.pixelsShaded', s.fragments_shaded),
-    });
+    }));
   }
 }
 

@@ -4,7 +4,7 @@
 // computes its map with its frame (shadelab-lab's `ErrorMap`, as
 // `shadelab errors` does); this tab holds the switch, the scale and the numbers.
 import { t, lab, formatNumber, formatCount } from '../i18n.js';
-import { el } from '../dom.js';
+import { el, put } from '../dom.js';
 import { Controls } from '../controls.js';
 import { hasExactSurface, EXACT_MODELS } from '../state.js';
 
@@ -63,7 +63,7 @@ export class ErrorsTool {
   refresh() {
     if (!this.controls) return;
     this.controls.refresh();
-    this.unavailable.hidden = hasExactSurface(this.page.state());
+    put(this.unavailable, 'hidden', hasExactSurface(this.page.state()));
   }
 
   /** Shows the colour scale and each panel's numbers (computed with its frame). */
