@@ -7,14 +7,9 @@ mod common;
 use common::*;
 use glam::{DVec3, Vec3};
 use shadelab_core::{
-    builtin_model, coverage, render, vertex_normals, Camera, Interpolation, Mesh, NormalWeighting,
-    Rasterizer, RenderOptions, Scene, Shading,
+    builtin_model, coverage, render, Camera, Interpolation, Mesh, Rasterizer, RenderOptions,
+    Shading,
 };
-
-fn smooth(mesh: Mesh, camera: Camera) -> Scene {
-    let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
-    scene(mesh, normals, camera)
-}
 
 /// Inside a closed convex mesh with culling off, every ray leaves through
 /// exactly one (back) face: every pixel is covered exactly once and every

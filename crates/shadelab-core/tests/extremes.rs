@@ -8,14 +8,9 @@ mod common;
 use common::*;
 use glam::{DVec3, Vec3};
 use shadelab_core::{
-    builtin_model, coverage, render, vertex_normals, Camera, CameraError, CornerNormals, Mesh,
-    MeshError, NormalWeighting, RenderError, RenderOptions, Scene, Shading,
+    builtin_model, coverage, render, Camera, CameraError, CornerNormals, Mesh, MeshError,
+    RenderError, RenderOptions, Shading,
 };
-
-fn smooth(mesh: Mesh, camera: Camera) -> Scene {
-    let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
-    scene(mesh, normals, camera)
-}
 
 /// Vertices at 1e30: a wall in front of the camera much larger than the
 /// screen covers every pixel once; a floor to the horizon covers exactly

@@ -10,14 +10,9 @@ mod common;
 use common::*;
 use glam::{DVec3, Vec3};
 use shadelab_core::{
-    builtin_model, coverage, render, vertex_normals, Camera, CameraError, CornerNormals, Mesh,
-    MeshError, NormalWeighting, Rasterizer, RenderError, RenderOptions, Scene, Shading,
+    builtin_model, coverage, render, Camera, CameraError, CornerNormals, Mesh, MeshError,
+    Rasterizer, RenderError, RenderOptions, Scene, Shading,
 };
-
-fn smooth(mesh: Mesh, camera: Camera) -> Scene {
-    let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
-    scene(mesh, normals, camera)
-}
 
 fn with(rasterizer: Rasterizer, cull: bool, shading: Shading, w: u32, h: u32) -> RenderOptions {
     RenderOptions {

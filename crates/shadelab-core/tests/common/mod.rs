@@ -313,6 +313,13 @@ pub fn scene(mesh: Mesh, normals: CornerNormals, camera: Camera) -> Scene {
     }
 }
 
+/// A scene with the standard lighting and the mesh's uniform vertex normals.
+pub fn smooth(mesh: Mesh, camera: Camera) -> Scene {
+    let normals =
+        shadelab_core::vertex_normals(&mesh, shadelab_core::NormalWeighting::Uniform, None);
+    scene(mesh, normals, camera)
+}
+
 /// Two scenes that need clipping: the camera inside a cube (near plane and
 /// guard band) and a floor a million units wide seen from just above it.
 pub fn clipped_scenes() -> [(&'static str, Scene); 2] {
