@@ -69,6 +69,10 @@ export class Panel {
     // Frames arrive as pixels, and instruments read pixels back: keep the canvas in memory.
     this.context = this.canvas.getContext('2d', { willReadFrequently: true });
     this.timeEl = figure.querySelector('.time');
+    // The caption's time, kept: `relabel` writes into these spans.
+    this.timeLabelEl = el('span', { class: 'time-label' });
+    this.timeValueEl = el('span', { class: 'time-value' });
+    this.timeEl.replaceChildren(this.timeLabelEl, this.timeValueEl);
     this.variantEl = figure.querySelector('.variant');
     this.rasterEl = figure.querySelector('.raster');
     this.statsEl = figure.querySelector('.stats');
@@ -283,11 +287,6 @@ export class Panel {
     const { ms, frames } = this.captionTime();
     // A group's frame took the time of the three panels together.
     const label = f.together ? 'panel.time.together' : 'panel.time';
-    if (!this.timeLabelEl) {
-      this.timeLabelEl = el('span', { class: 'time-label' });
-      this.timeValueEl = el('span', { class: 'time-value' });
-      this.timeEl.replaceChildren(this.timeLabelEl, this.timeValueEl);
-    }
     put(this.timeLabelEl, 'textContent', plural(`${label}.label`, frames));
     put(this.timeValueEl, 'textContent', t('panel.time', { ms: formatNumber(ms, 1) }));
     put(this.timeEl, 'title', plural(`${label}.title`, frames));
