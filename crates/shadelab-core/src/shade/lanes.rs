@@ -25,6 +25,10 @@ use super::model::Lighting;
 use crate::light::{Light, LightKind, Material, Specular, NO_ATTENUATION};
 use crate::simd::{pow_whole_groups, Lanes};
 
+/// The least whole power of a cosine [`Surface::power`] computes; below
+/// it the term is 0.
+const POWER_FLOOR: f64 = 1.0 / (1u128 << 100) as f64;
+
 /// How `max(0, r·v)^p` is computed for the material's `p`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 enum Power {
@@ -45,6 +49,9 @@ pub(crate) struct Surface {
     eye: Vec3,
     shininess: f32,
     power: Power,
+    /// For a whole exponent: the cosines at or below this are taken as 0
+    /// before the power (see [`Surface::power`]).
+    floor: f32,
     blinn: bool,
 }
 
@@ -150,6 +157,10 @@ impl Surface {
             eye: lighting.eye,
             shininess: p,
             power,
+            floor: match power {
+                Power::Whole(p) => POWER_FLOOR.powf(1.0 / f64::from(p)) as f32,
+                _ => 0.0,
+            },
             blinn: lighting.specular == Specular::BlinnPhong,
         }
     }
@@ -164,10 +175,26 @@ impl Surface {
     }
 
     /// `x^p` for `G` blocks at once.
+    ///
+    /// A whole power of a small cosine is subnormal (0.06^32 < 2^-126, and
+    /// a quarter of a full-screen quad's pixels have such cosines), and on
+    /// Intel cores each vector multiplication with a subnormal result or
+    /// operand takes a microcode assist of about a hundred cycles. So
+    /// cosines whose power would be below [`POWER_FLOOR`] are taken as 0
+    /// first: their term is then 0 instead of less than 2^-100, which
+    /// rounds every colour to the same bytes (a channel of 1/510 or more
+    /// has an ulp of 2^-32 or more).
     #[inline(always)]
     fn power<V: Lanes, const G: usize>(&self, mut x: [V; G]) -> [V; G] {
         match self.power {
-            Power::Whole(p) => return pow_whole_groups(x, p),
+            Power::Whole(p) => {
+                let zero = x[0].splat_like(0.0);
+                let floor = x[0].splat_like(self.floor);
+                for x in &mut x {
+                    *x = V::select(x.gt(floor), *x, zero);
+                }
+                return pow_whole_groups(x, p);
+            }
             Power::Fraction => {
                 for x in &mut x {
                     *x = x.pow_unit(self.shininess);
@@ -505,6 +532,63 @@ mod tests {
                         );
                     }
                 }
+            }
+        }
+    }
+
+    /// Whole powers of every cosine from 0 to 1 in steps of 2^-16 (and
+    /// the floor's neighbours), on every level.
+    struct Floor {
+        p: u32,
+    }
+
+    impl Kernel for Floor {
+        type Output = ();
+        fn run<S: Simd>(self, s: S) {
+            let lighting = Lighting {
+                material: Material {
+                    shininess: self.p as f32,
+                    ..Material::default()
+                },
+                ..lightings().remove(0)
+            };
+            let surface = Surface::of(&lighting);
+            assert_eq!(surface.power, Power::Whole(self.p));
+            let floor = surface.floor;
+            let mut cosines: Vec<f32> = (0..=1 << 16).map(|i| i as f32 / 65536.0).collect();
+            cosines.extend([floor, f32::from_bits(floor.to_bits() + 1)]);
+            cosines.extend([f32::from_bits(floor.to_bits() - 1), f32::MIN_POSITIVE]);
+            for x in cosines.chunks(8) {
+                let mut lanes = [0.0; 8];
+                lanes[..x.len()].copy_from_slice(x);
+                let [got] = surface.power([Vf::load(s, &lanes)]);
+                let [plain] = pow_whole_groups([Vf::load(s, &lanes)], self.p);
+                let (mut got_v, mut plain_v) = ([0f32; 8], [0f32; 8]);
+                got.store(&mut got_v);
+                plain.store(&mut plain_v);
+                for j in 0..x.len() {
+                    let (x, got, plain) = (lanes[j], got_v[j], plain_v[j]);
+                    if x > floor {
+                        // Above the floor: the same bits, and never subnormal.
+                        assert_eq!(got.to_bits(), plain.to_bits(), "{x}^{}", self.p);
+                        assert!(got.is_normal(), "{x}^{} = {got}", self.p);
+                    } else {
+                        // At or below it: 0, where the power was negligible.
+                        assert_eq!(got, 0.0, "{x}^{}", self.p);
+                        assert!(f64::from(plain) <= 1.01 * POWER_FLOOR, "{x}^{}", self.p);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Cosines whose whole power would be subnormal (slow on Intel cores)
+    /// or below 2^-100 give 0; all others the same bits as before.
+    #[test]
+    fn whole_powers_of_small_cosines_are_zero_never_subnormal() {
+        for level in SimdLevel::supported() {
+            for p in [1, 2, 3, 5, 7, 32, 100, 255, 1000, 1024] {
+                dispatch(level, Floor { p });
             }
         }
     }
