@@ -176,10 +176,11 @@ impl Surface {
 
     /// `x^p` for `G` blocks at once.
     ///
-    /// A whole power of a small cosine is subnormal (0.06^32 < 2^-126, and
-    /// a quarter of a full-screen quad's pixels have such cosines), and on
-    /// Intel cores each vector multiplication with a subnormal result or
-    /// operand takes a microcode assist of about a hundred cycles. So
+    /// A whole power of a small cosine is subnormal (0.06^32 < 2^-126; a
+    /// surface lit from one side has many such pixels), and on Intel cores
+    /// a vector multiplication with a subnormal result or operand takes a
+    /// microcode assist (without this, Phong's full-screen quad took 15 %
+    /// longer on the KVM Xeon of BENCHMARKS.md). So
     /// cosines whose power would be below [`POWER_FLOOR`] are taken as 0
     /// first: their term is then 0 instead of less than 2^-100, which
     /// rounds every colour to the same bytes (a channel of 1/510 or more
