@@ -179,7 +179,7 @@ impl Surface {
     /// A whole power of a small cosine is subnormal (0.06^32 < 2^-126; a
     /// surface lit from one side has many such pixels), and on Intel cores
     /// a vector multiplication with a subnormal result or operand takes a
-    /// microcode assist (without this, Phong's full-screen quad took 15 %
+    /// microcode assist (without this, Phong's full-screen quad took 16–18 %
     /// longer on the KVM Xeon of BENCHMARKS.md). So
     /// cosines whose power would be below [`POWER_FLOOR`] are taken as 0
     /// first: their term is then 0 instead of less than 2^-100, which
