@@ -447,10 +447,13 @@ fn the_image_does_not_depend_on_the_thread_count() {
     }
 }
 
-/// A renderer keeps its band buffers from frame to frame and clears only
-/// the columns each frame's triangles can reach: frames drawn one after
-/// another by one renderer (the model moving across the image, the image
-/// changing size) must equal the same frames drawn by fresh renderers.
+/// A renderer keeps its band buffers from frame to frame, clears only the
+/// columns each frame's triangles can reach, and leaves the depths of a
+/// band it wrote out cleared for the next: frames drawn one after another
+/// by one renderer (the model moving across the image, seen from close up
+/// in large triangles, the image changing size, a coverage pass or the
+/// three methods at once in between) must equal the same frames drawn by
+/// fresh renderers.
 #[test]
 fn frames_in_sequence_match_fresh_renders() {
     let mesh = builtin_model("teapot", None).unwrap().normalized();
@@ -459,21 +462,23 @@ fn frames_in_sequence_match_fresh_renders() {
     // Kept between frames of one size too: every pixel must be written.
     let mut again = Image::filled(1, 1, Rgb8([255, 0, 255]));
     let frames = [
-        (0.0, 320, 240),
-        (1.2, 320, 240),
-        (-1.5, 320, 240),
-        (3.0, 320, 240),
-        (0.4, 203, 157),
-        (-0.9, 400, 120),
+        (0.0, 3.0, 320, 240),
+        (1.2, 3.0, 320, 240),
+        (-1.5, 3.0, 320, 240),
+        (0.3, 0.9, 320, 240),
+        (3.0, 3.0, 320, 240),
+        (0.4, 3.0, 203, 157),
+        (0.0, 0.8, 203, 157),
+        (-0.9, 3.0, 400, 120),
     ];
     for shading in Shading::ALL {
-        for &(offset, w, h) in &frames {
-            let eye = DVec3::new(offset, 0.8, 3.0);
+        for (k, &(offset, distance, w, h)) in frames.iter().enumerate() {
+            let eye = DVec3::new(offset, 0.8 * distance / 3.0, distance);
             let target = DVec3::new(offset, 0.0, 0.0);
             let s = scene(
                 mesh.clone(),
                 normals.clone(),
-                camera(eye, target, 30.0, 0.5, 20.0),
+                camera(eye, target, 30.0, 0.1, 20.0),
             );
             let o = RenderOptions {
                 rasterizer: Rasterizer::Tiled,
@@ -482,14 +487,36 @@ fn frames_in_sequence_match_fresh_renders() {
             if (again.width(), again.height()) != (w, h) {
                 again = Image::filled(w, h, Rgb8([255, 0, 255]));
             }
+            let case = format!(
+                "{} offset {offset} distance {distance} {w}x{h}",
+                shading.name()
+            );
             kept.render_into(&s, &o, &mut again).unwrap();
             let mut fresh = Image::filled(w, h, Rgb8([0, 255, 0]));
             Renderer::new().render_into(&s, &o, &mut fresh).unwrap();
             assert!(
                 again == fresh,
-                "{} offset {offset} {w}x{h}: a reused renderer drew a different image",
-                shading.name()
+                "{case}: a reused renderer drew a different image"
             );
+            // Other passes between frames, on the same band buffers.
+            match k % 3 {
+                0 => assert_eq!(
+                    kept.coverage(&s, &o).unwrap(),
+                    Renderer::new().coverage(&s, &o).unwrap(),
+                    "{case}: coverage"
+                ),
+                1 => {
+                    let mut got: [Image; 3] =
+                        std::array::from_fn(|_| Image::filled(1, 1, o.background));
+                    let mut want = got.clone();
+                    let [a, b, c] = &mut got;
+                    kept.render_methods(&s, &o, [a, b, c]).unwrap();
+                    let [a, b, c] = &mut want;
+                    Renderer::new().render_methods(&s, &o, [a, b, c]).unwrap();
+                    assert!(got == want, "{case}: the three methods at once");
+                }
+                _ => {}
+            }
         }
     }
 }

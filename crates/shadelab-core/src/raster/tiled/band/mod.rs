@@ -2,10 +2,14 @@
 //!
 //! A band has a depth buffer and a packed-colour buffer for its rows (one
 //! set per thread, reused band after band, so they stay in cache). Only the
-//! columns its triangles' boxes reach are cleared and read back; the rest
-//! of its rows is written as background directly (a dense model in a wide
-//! image leaves most of each band empty: clearing and reading back whole
-//! rows was a fifth of the bunny's 1920×1080 flat frame). For each
+//! columns its triangles' boxes reach are read back; the rest of its rows
+//! is written as background directly (a dense model in a wide image leaves
+//! most of each band empty: clearing and reading back whole rows was a
+//! fifth of the bunny's 1920×1080 flat frame). The depths read back are set
+//! to 1 again as each row is written out, while they are in the first-level
+//! cache, so the next band starts cleared: a pass of its own over a
+//! 1920-pixel band (123 KB of depths, in the second-level cache) was 7 % of
+//! the full-screen Gouraud quad. For each
 //! triangle binned to the band, in submission order, each row of its
 //! bounding box within the band is walked in blocks of 8 pixels aligned to
 //! multiples of 8, in one of two ways chosen at setup (`setup::Walk`):
@@ -16,7 +20,9 @@
 //!   here because setup checked the functions' range over the box;
 //! * **spans** (large triangles): per row, each edge's boundary column is
 //!   found exactly (see `span` in `walk.rs`) and the span between them is filled with
-//!   no edge arithmetic per pixel.
+//!   no edge arithmetic per pixel, the columns stepped in vectors. Nearly
+//!   all of a span's blocks are whole: when all 8 lanes pass the depth
+//!   test, their colours are stored without reading back the old ones.
 //!
 //! Then per block: depth test "less" (depth from its plane), and shading
 //! specialised per method by the [`crate::shade::Shader`] type parameter. Phong does not
@@ -91,6 +97,11 @@ pub(crate) struct Band {
     /// The columns this frame's triangles may draw, in whole blocks of 8.
     columns: Range<usize>,
     depth: Vec<f32>,
+    /// Whether every depth in `depth` is 1 (cleared): the last
+    /// [`Band::finish`] of a band sets back to 1 the depths it read, while
+    /// they are in the first-level cache, so that the next band need not
+    /// clear its rows in a pass of its own.
+    depth_clear: bool,
     /// Packed colours; pixel `i`'s is at `color_at + i` (see [`skew`]).
     color: Vec<i32>,
     color_at: usize,
@@ -196,8 +207,9 @@ impl Band {
 
     /// Prepares the buffers for a frame of `width` pixels per row, whose
     /// triangles' boxes lie within `columns`. Only the blocks of 8 that
-    /// hold those columns are cleared, and [`Band::finish`] reads back only
-    /// those (the rest is background); the colour buffer is not cleared:
+    /// hold those columns are drawn, and [`Band::finish`] reads back only
+    /// those (the rest is background); their depths are cleared here unless
+    /// the last band's `finish` left them cleared. The colour buffer is not cleared:
     /// `finish` takes the background wherever the depth is still 1.
     /// `all_methods`: flat's and Gouraud's buffers are drawn too.
     pub fn begin(
@@ -220,6 +232,8 @@ impl Band {
                 self.columns =
                     (columns.start & !7)..columns.end.next_multiple_of(8).min(self.stride);
                 self.color.resize(len + SKEW_ROOM, 0);
+                // Rows past the last frame's are 1; so is all the rest when
+                // the last band was finished (`depth_clear`).
                 self.depth.resize(len, 1.0);
                 self.color_at = skew(&self.depth, &self.color);
                 if all_methods {
@@ -228,9 +242,13 @@ impl Band {
                         *at = skew(&self.depth, buffer);
                     }
                 }
-                for row in self.depth.chunks_exact_mut(self.stride) {
-                    row[self.columns.clone()].fill(1.0);
+                if !self.depth_clear {
+                    for row in self.depth.chunks_exact_mut(self.stride) {
+                        row[self.columns.clone()].fill(1.0);
+                    }
                 }
+                // Until `finish` has read them back.
+                self.depth_clear = false;
             }
             Pass::Count => {
                 self.counts.clear();
@@ -242,6 +260,10 @@ impl Band {
     /// Copies the finished band's `colors` into its rows of the image,
     /// `width × height` pixels (the background where the depth is still 1,
     /// or outside the drawn columns), and counts the pixels drawn.
+    ///
+    /// The shader's own colours are read last ([`Colors::Shader`]): then
+    /// each row's drawn columns, the only depths a triangle may write, are
+    /// set back to 1 once read, for the next band.
     #[inline(always)]
     pub fn finish<S: Simd>(
         &mut self,
@@ -322,7 +344,13 @@ impl Band {
                 };
                 dst.copy_from_slice(&c.to_le_bytes()[..3]);
             }
+            if colors == Colors::Shader {
+                self.depth[start..start + self.stride][self.columns.clone()].fill(1.0);
+            }
         }
+        // Every row was read: `out` holds the band's rows.
+        debug_assert_eq!(out.len() / width, self.depth.len() / self.stride);
+        self.depth_clear = colors == Colors::Shader;
         if stream {
             s.store_fence();
         }

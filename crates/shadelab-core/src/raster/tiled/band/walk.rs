@@ -175,17 +175,24 @@ impl Band {
             let (from, to) = (Vi::splat(s, left - 1), Vi::splat(s, right));
             let mut x = left & !7;
             if PLAIN && !Sh::DEFERRED {
-                // The row's buffers as local slices, so that the loop keeps
-                // their addresses in registers.
-                let (depth, color) = self.row_buffers(row_start, self.stride);
-                while x < right {
-                    let lanes = lane_index + Vi::splat(s, x);
+                // The row's blocks as whole chunks of its buffers, and the
+                // columns as vectors stepped by 8 (exact: integers below
+                // 2^24), so that the loop has no bounds check and no
+                // conversion or broadcast per block.
+                let first = x as usize;
+                let blocks = (right as usize - first).div_ceil(8);
+                let (depth, color) = self.row_buffers(row_start + first, 8 * blocks);
+                let depth = depth.as_chunks_mut::<8>().0;
+                let color = color.as_chunks_mut::<8>().0;
+                let mut lanes = lane_index + Vi::splat(s, x);
+                let mut column = f.lanes + Vf::splat(s, (x - t.x0) as f32);
+                let (eight, eight_f) = (Vi::splat(s, 8), Vf::splat(s, 8.0));
+                for (depth, color) in depth.iter_mut().zip(color) {
                     let inside = lanes.gt(from) & to.gt(lanes);
-                    let at = x as usize;
-                    let depth = (&mut depth[at..at + 8]).try_into().unwrap();
-                    let color = (&mut color[at..at + 8]).try_into().unwrap();
-                    fragments += shade_block(s, f, inside, x, &row, depth, color);
-                    x += 8;
+                    fragments +=
+                        shade_block::<S, Sh, true>(s, f, inside, column, &row, depth, color);
+                    lanes = lanes + eight;
+                    column = column + eight_f;
                 }
                 continue;
             }
@@ -229,10 +236,20 @@ impl Band {
         if !Sh::DEFERRED {
             let (depth, color) = self.row_buffers(at, 8);
             let (depth, color) = ((&mut depth[..8]).try_into(), (&mut color[..8]).try_into());
-            return shade_block(s, f, inside, x, row, depth.unwrap(), color.unwrap());
+            let x = f.column(x);
+            return shade_block::<S, Sh, false>(
+                s,
+                f,
+                inside,
+                x,
+                row,
+                depth.unwrap(),
+                color.unwrap(),
+            );
         }
         let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
-        let (x, pass) = depth_test(s, f, inside, x, row, depth_slot);
+        let x = f.column(x);
+        let pass = depth_test(s, f, inside, x, row, depth_slot);
         self.passed(s, f, x, pass, at, row)
     }
 
@@ -390,6 +407,13 @@ impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
         }
     }
 
+    /// The columns of the block at image column `x`, relative to the
+    /// triangle's first, as the planes take them.
+    #[inline(always)]
+    fn column(&self, x: i32) -> Vf<S> {
+        self.lanes + Vf::splat(self.lanes.1, (x - self.t.x0) as f32)
+    }
+
     /// Plane `j`'s value at the triangle's first column, `dy` rows down.
     #[inline(always)]
     fn plane_at_row(&self, j: usize, dy: f32) -> f32 {
@@ -397,50 +421,57 @@ impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
     }
 }
 
-/// The depth test of the lanes of `inside` in the block at column `x` of
-/// `row`: the block's columns relative to the triangle's first (as `f32`)
-/// and the lanes that passed, whose depth is now stored.
+/// The depth test of the lanes of `inside` in a block of `row` whose
+/// columns relative to the triangle's first are `x` ([`Fill::column`]):
+/// the lanes that passed, whose depth is now stored.
 #[inline(always)]
 fn depth_test<S: Simd, Sh: Shader>(
     s: S,
     f: &Fill<'_, S, Sh>,
     inside: Vi<S>,
-    x: i32,
+    x: Vf<S>,
     row: &Row,
     depth_slot: &mut [f32; 8],
-) -> (Vf<S>, Vi<S>) {
-    let x = f.lanes + Vf::splat(s, (x - f.t.x0) as f32);
+) -> Vi<S> {
     let depth = x.mul_add(f.dx[0], Vf::splat(s, row.values[0]));
     let stored = Vf::load(s, depth_slot);
     let pass = inside & depth.lt(stored);
     if pass.mask_bits() != 0 {
         Vf::select(pass, depth, stored).store(depth_slot);
     }
-    (x, pass)
+    pass
 }
 
 /// A block of a shader that is not deferred (flat, Gouraud): depth test,
 /// colours of the lanes that passed written; returns how many passed.
+/// `SPAN`: a block of a large triangle's span, where nearly every block is
+/// whole.
 #[inline(always)]
-fn shade_block<S: Simd, Sh: Shader>(
+fn shade_block<S: Simd, Sh: Shader, const SPAN: bool>(
     s: S,
     f: &Fill<'_, S, Sh>,
     inside: Vi<S>,
-    x: i32,
+    x: Vf<S>,
     row: &Row,
     depth_slot: &mut [f32; 8],
     color_slot: &mut [i32; 8],
 ) -> u32 {
-    let (x, pass) = depth_test(s, f, inside, x, row, depth_slot);
+    let pass = depth_test(s, f, inside, x, row, depth_slot);
     let bits = pass.mask_bits();
     if bits == 0 {
         return 0;
     }
     let attrs = interpolate(s, f, x, |j| Vf::splat(s, row.values[j]));
     let colors = f.shader.shade(f.shader_lanes, s, f.color, f.t.flip, &attrs);
-    // Always blended, even for a whole block: a branch on it is
+    // A whole block of a span is stored without reading the old colours
+    // (a load that waits for the line, where a store would not). Blocks
+    // of small triangles are always blended: a branch on it is
     // mispredicted on meshes whose blocks are partly covered at random
     // (12 % of the teapot's 1920×1080 flat frame).
+    if SPAN && bits == 0xff {
+        s.i_store(colors.0, color_slot);
+        return 8;
+    }
     let old = Vi(s.i_load(color_slot), s);
     s.i_store(Vi::select(pass, colors, old).0, color_slot);
     bits.count_ones()
