@@ -42,7 +42,9 @@ pub(crate) trait Lanes:
     fn pow_unit(self, p: f32) -> Self;
     /// `f` of each lane, one at a time (for rare cases).
     fn map(self, f: impl Fn(f32) -> f32) -> Self;
-    /// The lanes into `dst`, `LANES` long.
+    /// The lanes into `dst`, `LANES` long. Only the AVX-512 lanes and the
+    /// tests call it: unused in a WebAssembly build.
+    #[cfg_attr(not(any(test, target_arch = "x86_64")), allow(dead_code))]
     fn store_to(self, dst: &mut [f32]);
     /// Channels in byte units plus one half to packed colours (see
     /// [`Simd::f_to_bytes`]), stored into `dst`, `LANES` long.
