@@ -30,9 +30,9 @@
 //! other backends do as two vectors of 8 (`wide.rs`). Each operation is
 //! the same IEEE operation on more lanes, so the results are bit for bit
 //! those of [`SimdLevel::Avx2`] (tests check it). The tiled rasterizer uses
-//! that build for Phong's pixels only: its flat and Gouraud blocks and its
-//! per-vertex and per-triangle work run the AVX2 build, which was faster
-//! there (`SimdLevel::without_avx512`).
+//! that build for its bands (the pixels); its per-vertex and per-triangle
+//! work runs the AVX2 build, which was faster there
+//! (`SimdLevel::without_avx512`).
 //!
 //! All backends compute in IEEE single precision; the x86 ones differ from
 //! the portable one in the last bits only, where AVX2 fuses
@@ -94,13 +94,14 @@ impl SimdLevel {
 
     /// This level with the AVX-512 build replaced by the AVX2 one (the same
     /// bytes), for work that AVX-512 made slower. The tiled rasterizer keeps
-    /// AVX-512 for Phong's pixels only: its flat and Gouraud blocks
-    /// (`band_pass`) and its per-vertex and per-triangle work (vertex
-    /// lighting, setup and binning, flat's polygon lighting) run the AVX2
-    /// build. On an Intel Xeon with AVX-512 the geometry compiled for it made
-    /// the bunny's and the dragon's Gouraud and Phong frames up to 5 % slower,
-    /// while Phong's fill was 7–9 % faster (BENCHMARKS.md, "AVX-512 for
-    /// Phong's pixels only").
+    /// AVX-512 for its bands (the pixels, `band_pass`); its per-vertex and
+    /// per-triangle work (vertex lighting, setup and binning, flat's polygon
+    /// lighting) runs the AVX2 build. On an Intel Xeon with AVX-512 the
+    /// geometry compiled for it made the bunny's and the dragon's Gouraud and
+    /// Phong frames up to 5 % slower, while Phong's fill was 7–9 % faster
+    /// (BENCHMARKS.md, "AVX-512 for Phong's pixels only"); measured again
+    /// after the bands moved to AVX-512, it was neutral (1.001 over 36 rows),
+    /// so it stays on AVX2 ("Flat's and Gouraud's bands on AVX-512").
     pub(crate) fn without_avx512(self) -> SimdLevel {
         match self {
             SimdLevel::Avx512 => SimdLevel::Avx2,

@@ -255,16 +255,13 @@ fn band_pass<S: Shader>(
         options,
         output,
     };
-    // Flat and Gouraud blocks are loads, compares, blends and stores: the
-    // AVX-512 build turns their lane masks into mask registers and back, and
-    // was 7–13 % slower on a full-screen quad; Phong's lighting keeps more
-    // values in AVX-512's 32 registers and was up to 8 % faster (bunny,
-    // 1920×1080, one thread). Both give the same bytes.
-    let simd = if S::DEFERRED {
-        simd
-    } else {
-        simd.without_avx512()
-    };
+    // Every band runs the chosen level, AVX-512 included. Flat's and
+    // Gouraud's bands once ran the AVX2 build, which was 7–13 % faster on a
+    // full-screen quad when every block blended; since large triangles'
+    // whole blocks store without blending, AVX-512's 32 registers keep the
+    // span loop's planes out of the stack and its build is 3–4 % faster
+    // (BENCHMARKS.md, "Flat's and Gouraud's bands on AVX-512"). Both give
+    // the same bytes.
     dispatch(simd, kernel);
 }
 
