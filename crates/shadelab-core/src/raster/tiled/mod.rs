@@ -83,7 +83,7 @@ use std::sync::{Mutex, MutexGuard};
 
 use rayon::prelude::*;
 
-use self::band::{band_rows, Band, Colors, Pass};
+use self::band::{band_rows, Band, Colors, Depths, Pass};
 
 use self::chunk::{Chunk, Frame, SetupKernel};
 pub(crate) use self::setup::BAND_ROWS;
@@ -201,22 +201,25 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         }
         self.band.flush(simd, self.shader, &lanes);
         match self.output {
-            Output::Image(pixels, background) => {
-                self.band
-                    .finish(simd, pixels, o.width, o.height, background, Colors::Shader)
-            }
+            Output::Image(pixels, background) => self.band.finish(
+                simd,
+                pixels,
+                o.width,
+                o.height,
+                background,
+                Colors::Shader,
+                Depths::Clear,
+            ),
             Output::Methods([flat, gouraud, phong], background) => {
+                // Phong's read last: it clears the depths the others read.
                 let band = &mut *self.band;
-                band.finish(simd, flat, o.width, o.height, background, Colors::Flat);
-                band.finish(
-                    simd,
-                    gouraud,
-                    o.width,
-                    o.height,
-                    background,
-                    Colors::Gouraud,
-                );
-                band.finish(simd, phong, o.width, o.height, background, Colors::Shader);
+                for (out, colors, depths) in [
+                    (flat, Colors::Flat, Depths::Keep),
+                    (gouraud, Colors::Gouraud, Depths::Keep),
+                    (phong, Colors::Shader, Depths::Clear),
+                ] {
+                    band.finish(simd, out, o.width, o.height, background, colors, depths);
+                }
             }
             Output::Counts(counts) => self.band.finish_counts(counts, o.width),
         }

@@ -175,6 +175,16 @@ pub(crate) enum Colors {
     Gouraud,
 }
 
+/// Whether [`Band::finish`] leaves the depths it read as they are, for
+/// another colour buffer's read, or sets them back to 1: its last read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Depths {
+    /// Left as drawn: another of the band's colour buffers is read next.
+    Keep,
+    /// Set back to 1 as they are read: the band's last read.
+    Clear,
+}
+
 /// What a band pass does with covered pixels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Pass {
@@ -261,9 +271,11 @@ impl Band {
     /// `width × height` pixels (the background where the depth is still 1,
     /// or outside the drawn columns), and counts the pixels drawn.
     ///
-    /// The shader's own colours are read last ([`Colors::Shader`]): then
-    /// each row's drawn columns, the only depths a triangle may write, are
-    /// set back to 1 once read, for the next band.
+    /// With [`Depths::Clear`] (the band's last read) each row's drawn
+    /// columns, the only depths a triangle may write, are set back to 1
+    /// right after the row is read, while they are in the first-level
+    /// cache, and the next band skips its clearing pass.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn finish<S: Simd>(
         &mut self,
@@ -273,7 +285,9 @@ impl Band {
         height: u32,
         background: i32,
         colors: Colors,
+        depths: Depths,
     ) {
+        let clear = depths == Depths::Clear;
         let (color, color_at) = match colors {
             Colors::Shader => (&self.color, self.color_at),
             Colors::Flat => (&self.others[0], self.others_at[0]),
@@ -344,13 +358,13 @@ impl Band {
                 };
                 dst.copy_from_slice(&c.to_le_bytes()[..3]);
             }
-            if colors == Colors::Shader {
+            if clear {
                 self.depth[start..start + self.stride][self.columns.clone()].fill(1.0);
             }
         }
         // Every row was read: `out` holds the band's rows.
         debug_assert_eq!(out.len() / width, self.depth.len() / self.stride);
-        self.depth_clear = colors == Colors::Shader;
+        self.depth_clear = clear;
         if stream {
             s.store_fence();
         }
@@ -499,6 +513,7 @@ mod tests {
                 self.height,
                 BACKGROUND,
                 Colors::Shader,
+                Depths::Clear,
             );
             (image.to_vec(), band.covered, want, covered)
         }

@@ -233,10 +233,10 @@ impl Band {
             }
             return 0;
         }
+        let x = f.column(x);
         if !Sh::DEFERRED {
             let (depth, color) = self.row_buffers(at, 8);
             let (depth, color) = ((&mut depth[..8]).try_into(), (&mut color[..8]).try_into());
-            let x = f.column(x);
             return shade_block::<S, Sh, false>(
                 s,
                 f,
@@ -248,7 +248,6 @@ impl Band {
             );
         }
         let depth_slot: &mut [f32; 8] = (&mut self.depth[at..at + 8]).try_into().unwrap();
-        let x = f.column(x);
         let pass = depth_test(s, f, inside, x, row, depth_slot);
         self.passed(s, f, x, pass, at, row)
     }
