@@ -370,12 +370,13 @@ proptest! {
         ),
         cull in any::<bool>(),
     ) {
-        check_layers(W, H, &layers, cull)?;
+        check_layers(W, H, &layers, cull, Shading::Phong)?;
     }
 
     /// The same with layers of up to a few hundred pixels, whose rows are
-    /// walked as spans: whole blocks and packed ones queued over pixels
-    /// that earlier layers left queued.
+    /// walked as spans: for Phong, whole blocks and packed ones queued over
+    /// pixels that earlier layers left queued; for flat and Gouraud, blocks
+    /// two at a time, whole or partly hidden.
     #[test]
     fn overlapping_large_layers(
         layers in prop::collection::vec(
@@ -383,19 +384,21 @@ proptest! {
             2..12,
         ),
         cull in any::<bool>(),
+        shading in prop::sample::select(Shading::ALL.to_vec()),
     ) {
-        check_layers(257, 193, &layers, cull)?;
+        check_layers(257, 193, &layers, cull, shading)?;
     }
 }
 
 /// Each layer, a triangle with window corners `(x, y)` and one normal,
 /// parallel to the image at a depth of its own (near and far layers
-/// alternating), drawn with Phong by both rasterizers.
+/// alternating), drawn with `shading` by both rasterizers.
 fn check_layers(
     w: u32,
     h: u32,
     layers: &[(Vec<(f64, f64)>, Vec3)],
     cull: bool,
+    shading: Shading,
 ) -> Result<(), TestCaseError> {
     let cam = camera(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 50.0, 0.25, 30.0);
     let view = View::new(&cam, w, h);
@@ -412,7 +415,7 @@ fn check_layers(
     let scene = scene(mesh, normals, cam);
     let options = RenderOptions {
         cull_backfaces: cull,
-        ..options(w, h, Shading::Phong)
+        ..options(w, h, shading)
     };
     check_equivalent("layers", &scene, &options)
         .map_err(|e| TestCaseError::fail(format!("{e}\n  layers {layers:?}")))

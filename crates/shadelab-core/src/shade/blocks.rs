@@ -54,6 +54,13 @@ pub(crate) trait Shader: Sync {
     ) {
         let _ = (lanes, s, attrs, colors);
     }
+    /// As [`Shader::shade`] on `L::LANES` fragments at once (a span's
+    /// blocks two at a time, see `raster/tiled/band/pairs.rs`), with the
+    /// same operations lane by lane, the colours stored into `colors`
+    /// (`L::LANES` long). Only called when not `DEFERRED`.
+    fn shade_lanes<L: Lanes>(&self, color: u32, attrs: &[L; MAX_ATTRS], colors: &mut [i32]) {
+        let _ = (color, attrs, colors);
+    }
     /// Colours of 8 fragments of one triangle, packed `r | g << 8 | b << 16`:
     /// `color` is the triangle's flat colour (packed), `flip` −1 for a back
     /// face drawn with culling off (its normals turn), else 1.
@@ -79,6 +86,10 @@ impl Shader for FlatShader {
     fn shade<S: Simd>(&self, _: &(), s: S, color: u32, _: f32, _: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
         Vi::splat(s, color as i32)
     }
+    #[inline(always)]
+    fn shade_lanes<L: Lanes>(&self, color: u32, _: &[L; MAX_ATTRS], colors: &mut [i32]) {
+        colors.fill(color as i32);
+    }
 }
 
 /// Gouraud shading: the vertex colours, interpolated.
@@ -94,6 +105,10 @@ impl Shader for GouraudShader {
     #[inline(always)]
     fn shade<S: Simd>(&self, _: &(), _: S, _: u32, _: f32, a: &[Vf<S>; MAX_ATTRS]) -> Vi<S> {
         Vf::to_bytes(a[0], a[1], a[2])
+    }
+    #[inline(always)]
+    fn shade_lanes<L: Lanes>(&self, _: u32, a: &[L; MAX_ATTRS], colors: &mut [i32]) {
+        L::store_bytes(a[0], a[1], a[2], colors);
     }
 }
 

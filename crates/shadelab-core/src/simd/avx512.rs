@@ -1,11 +1,14 @@
 //! Sixteen lanes in one AVX-512 register, for lighting Phong's queued
-//! fragments ([`super::SimdLevel::Avx512`]).
+//! fragments and for flat's and Gouraud's span blocks two at a time
+//! ([`super::SimdLevel::Avx512`]).
 //!
 //! Intel's server cores run 512-bit multiply-adds on two ports, as many per
 //! cycle as 256-bit ones: a vector of 16 does the work of two of 8 in the
 //! time of one. The reflection model is nearly all multiply-adds, so it is
-//! written over [`Lanes`] and lit 16 fragments at a time here. The rest
-//! of the rasterizer keeps its blocks of 8 ([`Avx2`]).
+//! written over [`Lanes`] and lit 16 fragments at a time here; so are the
+//! whole pairs of blocks of a large triangle's span drawn with flat or
+//! Gouraud (`raster/tiled/band/pairs.rs`). The rest of the rasterizer
+//! keeps its blocks of 8 ([`Avx2`]).
 //!
 //! Every operation is the 256-bit one's 512-bit twin, so each lane gets
 //! the same bits as in the AVX2 build. The two estimates have no twin
@@ -150,6 +153,10 @@ impl Lanes for Wide {
     fn gt(self, o: Wide) -> __mmask16 {
         // SAFETY: see `Wide`.
         unsafe { _mm512_cmp_ps_mask::<_CMP_GT_OQ>(self.0, o.0) }
+    }
+    #[inline(always)]
+    fn mask_bits(mask: __mmask16) -> u32 {
+        u32::from(mask)
     }
     #[inline(always)]
     fn select(mask: __mmask16, yes: Wide, no: Wide) -> Wide {

@@ -26,8 +26,9 @@
 //! the compiler gets 32 vector registers instead of 16 (the inner loops
 //! spilled plane values to the stack), mask registers for compares and
 //! blends, and three-operand logic; and Phong's queued fragments are lit
-//! 16 at a time in 512-bit registers ([`Simd::F16`], `avx512.rs`), which
-//! other backends do as two vectors of 8 (`wide.rs`). Each operation is
+//! 16 at a time in 512-bit registers ([`Simd::F16`], `avx512.rs`), as are
+//! flat's and Gouraud's whole pairs of span blocks, which other backends
+//! do as two vectors of 8 (`wide.rs`). Each operation is
 //! the same IEEE operation on more lanes, so the results are bit for bit
 //! those of [`SimdLevel::Avx2`] (tests check it). The tiled rasterizer uses
 //! that build for its bands (the pixels); its per-vertex and per-triangle

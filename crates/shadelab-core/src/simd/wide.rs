@@ -36,6 +36,8 @@ pub(crate) trait Lanes:
     fn recip(self) -> Self;
     /// Where `self > o`.
     fn gt(self, o: Self) -> Self::Mask;
+    /// Bit `i` set where lane `i` of `mask` is true.
+    fn mask_bits(mask: Self::Mask) -> u32;
     /// Lanes of `yes` where `mask` is set, of `no` elsewhere.
     fn select(mask: Self::Mask, yes: Self, no: Self) -> Self;
     /// [`pow_unit`] of each lane.
@@ -81,6 +83,10 @@ impl<S: Simd> Lanes for Vf<S> {
     #[inline(always)]
     fn gt(self, o: Self) -> Vi<S> {
         Vi(self.1.f_gt(self.0, o.0), self.1)
+    }
+    #[inline(always)]
+    fn mask_bits(mask: Vi<S>) -> u32 {
+        mask.mask_bits()
     }
     #[inline(always)]
     fn select(mask: Vi<S>, yes: Self, no: Self) -> Self {
@@ -177,6 +183,10 @@ impl<V: Lanes> Lanes for Pair<V> {
     #[inline(always)]
     fn gt(self, o: Self) -> Self::Mask {
         Pair(self.0.gt(o.0), self.1.gt(o.1))
+    }
+    #[inline(always)]
+    fn mask_bits(mask: Self::Mask) -> u32 {
+        V::mask_bits(mask.0) | V::mask_bits(mask.1) << V::LANES
     }
     #[inline(always)]
     fn select(mask: Self::Mask, yes: Self, no: Self) -> Self {

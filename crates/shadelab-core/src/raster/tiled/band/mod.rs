@@ -1,7 +1,8 @@
 //! The inner loop: one band of image rows, its triangles, blocks of 8 pixels.
 //!
 //! A band has a depth buffer and a packed-colour buffer for its rows (one
-//! set per thread, reused band after band, so they stay in cache). Only the
+//! set per thread, reused band after band, so they stay in cache), whose
+//! rows start on cache lines (`depth_buffer.rs`). Only the
 //! columns its triangles' boxes reach are read back; the rest of its rows
 //! is written as background directly (a dense model in a wide image leaves
 //! most of each band empty: clearing and reading back whole rows was a
@@ -21,7 +22,8 @@
 //! * **spans** (large triangles): per row, each edge's boundary column is
 //!   found exactly (see `span` in `walk.rs`) and the span between them is filled with
 //!   no edge arithmetic per pixel, the columns stepped in vectors. Nearly
-//!   all of a span's blocks are whole: when all 8 lanes pass the depth
+//!   all of a span's blocks are whole: flat and Gouraud draw them two at a
+//!   time in 16 lanes (`pairs.rs`), and when all lanes pass the depth
 //!   test, their colours are stored without reading back the old ones.
 //!
 //! Then per block: depth test "less" (depth from its plane), and shading
@@ -74,11 +76,14 @@
 // Loops over the three edges, channels and planes index several arrays at once.
 #![allow(clippy::needless_range_loop)]
 
+mod depth_buffer;
+mod pairs;
 mod queue;
 mod walk;
 
 use std::ops::Range;
 
+use self::depth_buffer::{DepthBuffer, STRIDE_PIXELS};
 use super::setup::BAND_ROWS;
 use crate::shade::MAX_ATTRS;
 use crate::simd::{Simd, Vf, Vi};
@@ -92,11 +97,12 @@ use crate::simd::{Simd, Vf, Vi};
 #[derive(Debug, Default)]
 #[repr(align(128))]
 pub(crate) struct Band {
-    /// Row stride of the buffers: the image width rounded up to 8.
+    /// Row stride of the buffers: the image width rounded up to
+    /// [`STRIDE_PIXELS`].
     stride: usize,
     /// The columns this frame's triangles may draw, in whole blocks of 8.
     columns: Range<usize>,
-    depth: Vec<f32>,
+    depth: DepthBuffer,
     /// Whether every depth in `depth` is 1 (cleared): the last
     /// [`Band::finish`] of a band sets back to 1 the depths it read, while
     /// they are in the first-level cache, so that the next band need not
@@ -204,8 +210,8 @@ impl Band {
         fn room<T>(buffer: &mut Vec<T>, len: usize) {
             buffer.reserve(len.saturating_sub(buffer.len()));
         }
-        let len = (width as usize).next_multiple_of(8) * BAND_ROWS as usize;
-        room(&mut self.depth, len);
+        let len = (width as usize).next_multiple_of(STRIDE_PIXELS) * BAND_ROWS as usize;
+        self.depth.reserve(len);
         room(&mut self.color, len + SKEW_ROOM);
         room(&mut self.stamp, len);
         if all_methods {
@@ -230,7 +236,7 @@ impl Band {
         columns: Range<usize>,
         all_methods: bool,
     ) {
-        self.stride = (width as usize).next_multiple_of(8);
+        self.stride = (width as usize).next_multiple_of(STRIDE_PIXELS);
         let len = self.stride * rows as usize;
         self.fragments = 0;
         self.covered = 0;
@@ -244,7 +250,7 @@ impl Band {
                 self.color.resize(len + SKEW_ROOM, 0);
                 // Rows past the last frame's are 1; so is all the rest when
                 // the last band was finished (`depth_clear`).
-                self.depth.resize(len, 1.0);
+                self.depth.resize(len);
                 self.color_at = skew(&self.depth, &self.color);
                 if all_methods {
                     for (buffer, at) in self.others.iter_mut().zip(&mut self.others_at) {

@@ -77,7 +77,7 @@ impl Band {
             return self.interpolate_and_queue(s, f, x, Vf::splat(s, row.dy), index, 8);
         }
         let at_row = |j: usize| Vf::splat(s, row.values[j]);
-        let attrs = interpolate(s, f, x, at_row);
+        let attrs = interpolate(f, x, at_row);
         self.queue_lit(s, f, &attrs, index, 8);
     }
 
@@ -97,7 +97,7 @@ impl Band {
             let plane = &f.planes[j];
             Vf::splat(s, plane.at_origin) + Vf::splat(s, plane.dy) * dy
         };
-        let attrs = interpolate(s, f, x, at_row);
+        let attrs = interpolate(f, x, at_row);
         self.queue_lit(s, f, &attrs, index, count);
     }
 

@@ -2,6 +2,7 @@
 //! 8 pixels or in spans, the depth test, and each block's colours (flat,
 //! Gouraud) or its place in Phong's queue (`queue.rs`).
 
+use super::pairs::fill_span;
 use super::{Band, Pass};
 use crate::raster::tiled::setup::{plane_count, Plane, Triangle, Walk, GOURAUD_OF_ALL};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
@@ -175,25 +176,12 @@ impl Band {
             let (from, to) = (Vi::splat(s, left - 1), Vi::splat(s, right));
             let mut x = left & !7;
             if PLAIN && !Sh::DEFERRED {
-                // The row's blocks as whole chunks of its buffers, and the
-                // columns as vectors stepped by 8 (exact: integers below
-                // 2^24), so that the loop has no bounds check and no
-                // conversion or broadcast per block.
+                // The row's blocks as whole chunks of its buffers, two at a
+                // time (`pairs.rs`).
                 let first = x as usize;
                 let blocks = (right as usize - first).div_ceil(8);
                 let (depth, color) = self.row_buffers(row_start + first, 8 * blocks);
-                let depth = depth.as_chunks_mut::<8>().0;
-                let color = color.as_chunks_mut::<8>().0;
-                let mut lanes = lane_index + Vi::splat(s, x);
-                let mut column = f.lanes + Vf::splat(s, (x - t.x0) as f32);
-                let (eight, eight_f) = (Vi::splat(s, 8), Vf::splat(s, 8.0));
-                for (depth, color) in depth.iter_mut().zip(color) {
-                    let inside = lanes.gt(from) & to.gt(lanes);
-                    fragments +=
-                        shade_block::<S, Sh, true>(s, f, inside, column, &row, depth, color);
-                    lanes = lanes + eight;
-                    column = column + eight_f;
-                }
+                fragments += fill_span(s, f, &row, (x, left, right), depth, color);
                 continue;
             }
             while x < right {
@@ -301,7 +289,6 @@ impl Band {
         let flat = FlatShader.shade(&(), s, f.color, f.t.flip, &none);
         let plane = |j: usize| &f.planes[GOURAUD_OF_ALL[j]];
         let colors = interpolate_planes(
-            s,
             f.interpolation,
             3,
             x,
@@ -409,7 +396,7 @@ impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
     /// The columns of the block at image column `x`, relative to the
     /// triangle's first, as the planes take them.
     #[inline(always)]
-    fn column(&self, x: i32) -> Vf<S> {
+    pub(super) fn column(&self, x: i32) -> Vf<S> {
         self.lanes + Vf::splat(self.lanes.1, (x - self.t.x0) as f32)
     }
 
@@ -446,7 +433,7 @@ fn depth_test<S: Simd, Sh: Shader>(
 /// `SPAN`: a block of a large triangle's span, where nearly every block is
 /// whole.
 #[inline(always)]
-fn shade_block<S: Simd, Sh: Shader, const SPAN: bool>(
+pub(super) fn shade_block<S: Simd, Sh: Shader, const SPAN: bool>(
     s: S,
     f: &Fill<'_, S, Sh>,
     inside: Vi<S>,
@@ -460,7 +447,7 @@ fn shade_block<S: Simd, Sh: Shader, const SPAN: bool>(
     if bits == 0 {
         return 0;
     }
-    let attrs = interpolate(s, f, x, |j| Vf::splat(s, row.values[j]));
+    let attrs = interpolate(f, x, |j| Vf::splat(s, row.values[j]));
     let colors = f.shader.shade(f.shader_lanes, s, f.color, f.t.flip, &attrs);
     // A whole block of a span is stored without reading the old colours
     // (a load that waits for the line, where a store would not). Blocks
@@ -481,12 +468,11 @@ fn shade_block<S: Simd, Sh: Shader, const SPAN: bool>(
 /// normal flipped for back faces).
 #[inline(always)]
 pub(super) fn interpolate<S: Simd, Sh: Shader>(
-    s: S,
     f: &Fill<'_, S, Sh>,
     x: Vf<S>,
     at_row: impl Fn(usize) -> Vf<S>,
 ) -> [Vf<S>; MAX_ATTRS] {
-    let mut attrs = interpolate_planes(s, f.interpolation, Sh::ATTRS, x, |k| f.dx[k], at_row);
+    let mut attrs = interpolate_planes(f.interpolation, Sh::ATTRS, x, |k| f.dx[k], at_row);
     if Sh::DEFERRED && f.t.flip != 1.0 {
         for k in 0..3 {
             attrs[k] = attrs[k] * f.t.flip;
@@ -500,15 +486,14 @@ pub(super) fn interpolate<S: Simd, Sh: Shader>(
 /// plane 1 is 1/w, attribute `k` is plane `2 + k` (divided by w in
 /// perspective mode, so multiplied back by the interpolated w).
 #[inline(always)]
-fn interpolate_planes<S: Simd>(
-    s: S,
+pub(super) fn interpolate_planes<L: Lanes>(
     interpolation: Interpolation,
     count: usize,
-    x: Vf<S>,
-    dx: impl Fn(usize) -> Vf<S>,
-    at_row: impl Fn(usize) -> Vf<S>,
-) -> [Vf<S>; MAX_ATTRS] {
-    let mut attrs = [Vf::splat(s, 0.0); MAX_ATTRS];
+    x: L,
+    dx: impl Fn(usize) -> L,
+    at_row: impl Fn(usize) -> L,
+) -> [L; MAX_ATTRS] {
+    let mut attrs = [x.splat_like(0.0); MAX_ATTRS];
     match interpolation {
         Interpolation::Perspective if count > 0 => {
             let w = x.mul_add(dx(1), at_row(1)).recip();
