@@ -135,20 +135,25 @@ pub(crate) struct Band {
 /// queue's capacity. Each backend lights `16 · Simd::LIT_GROUPS`.
 const QUEUE_LIT: usize = 16 * crate::simd::MAX_LIT_GROUPS;
 
+/// The queue's room past [`QUEUE_LIT`]: the most fragments queued at once
+/// (a pair of whole blocks, `pairs.rs`), and so the most left over once
+/// the queue is lit.
+const QUEUE_ROOM: usize = 16;
+
 /// Fragments of a deferred shader, packed into whole lanes: their
 /// attributes and buffer indices, in the order they passed the depth test.
 #[derive(Debug)]
 struct Queue {
-    attrs: [[f32; QUEUE_LIT + 8]; MAX_ATTRS],
-    at: [i32; QUEUE_LIT + 8],
+    attrs: [[f32; QUEUE_LIT + QUEUE_ROOM]; MAX_ATTRS],
+    at: [i32; QUEUE_LIT + QUEUE_ROOM],
     len: usize,
 }
 
 impl Default for Queue {
     fn default() -> Queue {
         Queue {
-            attrs: [[0.0; QUEUE_LIT + 8]; MAX_ATTRS],
-            at: [0; QUEUE_LIT + 8],
+            attrs: [[0.0; QUEUE_LIT + QUEUE_ROOM]; MAX_ATTRS],
+            at: [0; QUEUE_LIT + QUEUE_ROOM],
             len: 0,
         }
     }

@@ -1,96 +1,155 @@
 //! A large triangle's span, its blocks two at a time in 16 lanes
-//! ([`Simd::F16`]), for the shaders that colour blocks as they go (flat,
-//! Gouraud).
+//! ([`Simd::F16`]): flat and Gouraud colour them, Phong queues them.
 //!
 //! Inside a large triangle nearly every pair of blocks lies wholly in the
 //! span and passes the depth test whole. With AVX-512 such a pair is one
-//! 512-bit vector per value: the depth test, Gouraud's 1/w and colours, the
-//! conversion to bytes and the stores take one instruction for 16 pixels
-//! where blocks of 8 took two (Intel's server cores run 512-bit
-//! multiply-adds on two ports, as many per cycle as 256-bit ones). Other
-//! backends get a [`crate::simd::Pair`] of their 8 lanes: the two blocks
-//! side by side.
+//! 512-bit vector per value: the depth test, 1/w and the interpolated
+//! attributes, Gouraud's conversion to bytes and the stores take one
+//! instruction for 16 pixels where blocks of 8 took two (Intel's server
+//! cores run 512-bit multiply-adds on two ports, as many per cycle as
+//! 256-bit ones). Other backends get a [`crate::simd::Pair`] of their 8
+//! lanes: the two blocks side by side.
 //!
-//! Each lane gets the operations `shade_block` would give it: the columns
+//! Each lane gets the operations a block of 8 would give it: the columns
 //! are exact integers in `f32`, the multiply-adds are the same, and the
 //! AVX-512 reciprocal is estimated per half of 8 with the AVX2 instruction
 //! (`simd/avx512.rs`). So the bytes are those of blocks of 8, which
-//! `tests/tiled.rs` checks against every other level and rasterizer. A
-//! pair that is not whole, partly outside the span or partly hidden, goes
-//! to `shade_block` block by block, which redoes its depth test (nothing
-//! was stored yet).
+//! `tests/methods.rs` checks against the three-methods frame (still drawn
+//! in blocks of 8) close up. A pair that is not whole, partly outside the
+//! span or partly hidden, goes block by block (`shade_block`,
+//! `Band::block`), which redoes its depth test: nothing was stored yet.
+//! Pairs start at a multiple of 16 columns, a cache line of the buffers
+//! (`depth_buffer.rs`), after a lone first block where needed.
 
 use super::walk::{interpolate_planes, shade_block, Fill, Row};
+use super::Band;
 use crate::raster::tiled::setup::plane_count;
 use crate::shade::{Shader, MAX_ATTRS};
 use crate::simd::{Lanes, Simd, Vi};
 
-/// Fills one row's span: columns `left..right` (image columns), whose
-/// blocks of 8 start at column `x` (a multiple of 8, at most `left`; the
-/// buffers' rows are a multiple of 16 long), with
-/// the depths and colours from there in `depth` and `color` (whole blocks
-/// up to `right`). Returns how many pixels passed the depth test.
+/// What a row's pairs of blocks need, in 16 lanes, and the columns of the
+/// current pair.
+struct Pairs<S: Simd> {
+    /// Columns relative to the triangle's first, as the planes take them:
+    /// integers below 2^24, so the compares and steps are exact.
+    column: S::F16,
+    /// The span, `from < column < to`, in the same terms.
+    from: S::F16,
+    to: S::F16,
+    sixteen: S::F16,
+    dx: [S::F16; 2 + MAX_ATTRS],
+    at_row: [S::F16; 2 + MAX_ATTRS],
+}
+
+impl<S: Simd> Pairs<S> {
+    /// The pairs of row `row`'s span `left..right` (image columns) from the
+    /// one at column `x`.
+    #[inline(always)]
+    fn new<Sh: Shader>(s: S, f: &Fill<'_, S, Sh>, row: &Row, (x, left, right): Span) -> Self {
+        let x0 = f.t.x0;
+        let ramp = s.f16_load(&std::array::from_fn(|i| i as f32));
+        let mut dx = [ramp; 2 + MAX_ATTRS];
+        let mut at_row = [ramp; 2 + MAX_ATTRS];
+        for j in 0..plane_count(Sh::ATTRS) {
+            dx[j] = ramp.splat_like(f.planes[j].dx);
+            at_row[j] = ramp.splat_like(row.values[j]);
+        }
+        Pairs {
+            column: ramp + ramp.splat_like((x - x0) as f32),
+            from: ramp.splat_like((left - 1 - x0) as f32),
+            to: ramp.splat_like((right - x0) as f32),
+            sixteen: ramp.splat_like(16.0),
+            dx,
+            at_row,
+        }
+    }
+
+    /// The current pair's depths, and a bit per lane inside the span whose
+    /// depth is less than `stored` (as a block's `z < stored`).
+    #[inline(always)]
+    fn depth_test(&self, s: S, stored: &[f32; 16]) -> (S::F16, u32) {
+        let inside = self.column.gt(self.from) & self.to.gt(self.column);
+        let z = self.column.mul_add(self.dx[0], self.at_row[0]);
+        let pass = inside & s.f16_load(stored).gt(z);
+        (z, <S::F16 as Lanes>::mask_bits(pass))
+    }
+
+    /// The current pair's attributes (normals not yet turned for back faces).
+    #[inline(always)]
+    fn attributes<Sh: Shader>(&self, f: &Fill<'_, S, Sh>) -> [S::F16; MAX_ATTRS] {
+        let (dx, at_row) = (&self.dx, &self.at_row);
+        interpolate_planes(
+            f.interpolation,
+            Sh::ATTRS,
+            self.column,
+            |j| dx[j],
+            |j| at_row[j],
+        )
+    }
+
+    /// On to the next pair.
+    #[inline(always)]
+    fn step(&mut self) {
+        self.column = self.column + self.sixteen;
+    }
+}
+
+/// A pair's first column `x`, and the span `left..right`.
+type Span = (i32, i32, i32);
+
+/// How many blocks of 8 the span has from column `x`, and how many of them
+/// go alone first so that the pairs start at a multiple of 16 (0 or 1).
+#[inline(always)]
+fn blocks_and_head(x: i32, right: i32) -> (usize, usize) {
+    let blocks = ((right - x).max(0) as usize).div_ceil(8);
+    (blocks, usize::from(x % 16 != 0).min(blocks))
+}
+
+/// Fills one row's span (flat, Gouraud): columns `left..right` (image
+/// columns), whose blocks of 8 start at column `x` (a multiple of 8, at
+/// most `left`; the buffers' rows are a multiple of 16 long), with the
+/// depths and colours from there in `depth` and `color` (whole blocks up
+/// to `right`). Returns how many pixels passed the depth test.
 #[inline(always)]
 pub(super) fn fill_span<S: Simd, Sh: Shader>(
     s: S,
     f: &Fill<'_, S, Sh>,
     row: &Row,
-    (x, left, right): (i32, i32, i32),
+    (x, left, right): Span,
     depth: &mut [f32],
     color: &mut [i32],
 ) -> u32 {
-    // A lone first block, so that the pairs start at a multiple of 16
-    // columns: a cache line of the buffers (`depth_buffer.rs`).
-    let head = if x % 16 == 0 { 0 } else { depth.len().min(8) };
+    let head = 8 * blocks_and_head(x, right).1;
     let (depth_head, depth) = depth.split_at_mut(head);
     let (color_head, color) = color.split_at_mut(head);
     let mut fragments = blocks(s, f, row, (x, left, right), depth_head, color_head);
-    let x = x + head as i32;
-    let x0 = f.t.x0;
-    let ramp = s.f16_load(&std::array::from_fn(|i| i as f32));
-    // Columns relative to the triangle's first, as the planes take them:
-    // integers below 2^24, so the compares and steps are exact.
-    let mut column = ramp + ramp.splat_like((x - x0) as f32);
-    let from = ramp.splat_like((left - 1 - x0) as f32);
-    let to = ramp.splat_like((right - x0) as f32);
-    let sixteen = ramp.splat_like(16.0);
-    let mut dx = [ramp; 2 + MAX_ATTRS];
-    let mut at_row = [ramp; 2 + MAX_ATTRS];
-    for j in 0..plane_count(Sh::ATTRS) {
-        dx[j] = ramp.splat_like(f.planes[j].dx);
-        at_row[j] = ramp.splat_like(row.values[j]);
-    }
+    let mut x = x + head as i32;
+    let mut pairs = Pairs::new(s, f, row, (x, left, right));
     let (depth_pairs, depth_rest) = depth.as_chunks_mut::<16>();
     let (color_pairs, color_rest) = color.as_chunks_mut::<16>();
-    let mut x = x;
     for (depth, color) in depth_pairs.iter_mut().zip(color_pairs) {
-        let inside = column.gt(from) & to.gt(column);
-        let z = column.mul_add(dx[0], at_row[0]);
-        // `stored > z` is the blocks' `z < stored`, NaN false in both.
-        let pass = <S::F16 as Lanes>::mask_bits(inside & s.f16_load(depth).gt(z));
+        let (z, pass) = pairs.depth_test(s, depth);
         if pass == 0xffff {
             z.store_to(depth);
-            let attrs =
-                interpolate_planes(f.interpolation, Sh::ATTRS, column, |j| dx[j], |j| at_row[j]);
-            f.shader.shade_lanes(f.color, &attrs, color);
+            f.shader.shade_lanes(f.color, &pairs.attributes(f), color);
             fragments += 16;
         } else if pass != 0 {
             fragments += blocks(s, f, row, (x, left, right), depth, color);
         }
-        column = column + sixteen;
+        pairs.step();
         x += 16;
     }
     fragments + blocks(s, f, row, (x, left, right), depth_rest, color_rest)
 }
 
 /// As [`fill_span`], block by block with `shade_block`: a pair that is not
-/// whole, or the last block of an odd count.
+/// whole, or a lone block.
 #[inline(always)]
 fn blocks<S: Simd, Sh: Shader>(
     s: S,
     f: &Fill<'_, S, Sh>,
     row: &Row,
-    (x, left, right): (i32, i32, i32),
+    (x, left, right): Span,
     depth: &mut [f32],
     color: &mut [i32],
 ) -> u32 {
@@ -105,4 +164,68 @@ fn blocks<S: Simd, Sh: Shader>(
         fragments += shade_block::<S, Sh, true>(s, f, inside, f.column(x), row, depth, color);
     }
     fragments
+}
+
+impl Band {
+    /// Queues one row's span for a deferred shader (Phong) as
+    /// [`fill_span`] fills it; `row_start` is the row's buffer index.
+    #[inline(always)]
+    pub(super) fn queue_span<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        row: &Row,
+        row_start: usize,
+        (x, left, right): Span,
+    ) -> u32 {
+        let (blocks, head) = blocks_and_head(x, right);
+        let mut fragments = self.queue_blocks(s, f, row, row_start, (x, left, right), head);
+        let mut x = x + 8 * head as i32;
+        let mut pairs = Pairs::new(s, f, row, (x, left, right));
+        for _ in 0..(blocks - head) / 2 {
+            let at = row_start + x as usize;
+            let depth: &mut [f32; 16] = (&mut self.depth[at..at + 16]).try_into().unwrap();
+            let (z, pass) = pairs.depth_test(s, depth);
+            if pass == 0xffff {
+                z.store_to(depth);
+                let mut attrs = pairs.attributes(f);
+                if f.t.flip != 1.0 {
+                    for a in &mut attrs[..3] {
+                        *a = *a * f.t.flip;
+                    }
+                }
+                self.queue_pair(s, f, &attrs, at);
+                fragments += 16;
+            } else if pass != 0 {
+                fragments += self.queue_blocks(s, f, row, row_start, (x, left, right), 2);
+            }
+            pairs.step();
+            x += 16;
+        }
+        let rest = (blocks - head) % 2;
+        fragments + self.queue_blocks(s, f, row, row_start, (x, left, right), rest)
+    }
+
+    /// `count` blocks from column `x` of the span, one by one
+    /// ([`Band::block`]).
+    #[inline(always)]
+    fn queue_blocks<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        row: &Row,
+        row_start: usize,
+        (x, left, right): Span,
+        count: usize,
+    ) -> u32 {
+        let (from, to) = (Vi::splat(s, left - 1), Vi::splat(s, right));
+        let mut fragments = 0;
+        for k in 0..count {
+            let x = x + 8 * k as i32;
+            let lanes = Vi::ramp(s) + Vi::splat(s, x);
+            let inside = lanes.gt(from) & to.gt(lanes);
+            fragments += self.block::<S, Sh, true>(s, f, inside, row_start + x as usize, x, row);
+        }
+        fragments
+    }
 }

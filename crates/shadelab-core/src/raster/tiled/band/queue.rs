@@ -81,6 +81,32 @@ impl Band {
         self.queue_lit(s, f, &attrs, index, 8);
     }
 
+    /// Appends a pair of whole blocks from buffer index `at`, interpolated
+    /// in 16 lanes (`pairs.rs`), to the lighting queue, as
+    /// [`Band::queue_lit`] would append the two blocks.
+    #[inline(always)]
+    pub(super) fn queue_pair<S: Simd, Sh: Shader>(
+        &mut self,
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        attrs: &[S::F16; MAX_ATTRS],
+        at: usize,
+    ) {
+        let q = &mut self.queue;
+        let len = q.len;
+        for k in 0..Sh::ATTRS {
+            attrs[k].store_to(&mut q.attrs[k][len..len + 16]);
+        }
+        let index = Vi::ramp(s) + Vi::splat(s, at as i32);
+        s.i_store(index.0, (&mut q.at[len..len + 8]).try_into().unwrap());
+        let index = index + Vi::splat(s, 8);
+        s.i_store(index.0, (&mut q.at[len + 8..len + 16]).try_into().unwrap());
+        q.len = len + 16;
+        if q.len >= 16 * S::LIT_GROUPS {
+            self.shade_queue(s, f.shader, f.shader_lanes);
+        }
+    }
+
     /// Interpolates the fragments at columns `x`, `dy` rows down (buffer
     /// indices `index`), and queues the first `count` of them for lighting.
     #[inline(always)]
@@ -184,14 +210,23 @@ impl Band {
                 scatter(colors, at, image);
             }
         }
-        // Later fragments move to the front, keeping their order.
-        for k in 0..Sh::ATTRS {
-            let rest = Vf::load(s, q.attrs[k][16 * G..16 * G + 8].try_into().unwrap());
-            rest.store((&mut q.attrs[k][..8]).try_into().unwrap());
-        }
-        let rest = s.i_load(q.at[16 * G..16 * G + 8].try_into().unwrap());
-        s.i_store(rest, (&mut q.at[..8]).try_into().unwrap());
+        // Later fragments (fewer than `QUEUE_ROOM`) move to the front,
+        // keeping their order, 8 lanes at a time (as `queue_lit` stored
+        // them, so that each load gets its data straight from the store
+        // before it); the second 8 only when a pair was queued last.
         q.len -= count;
+        for to in [0, 8] {
+            if to > 0 && q.len <= 8 {
+                break;
+            }
+            let from = 16 * G + to;
+            for k in 0..Sh::ATTRS {
+                let rest = Vf::load(s, q.attrs[k][from..from + 8].try_into().unwrap());
+                rest.store((&mut q.attrs[k][to..to + 8]).try_into().unwrap());
+            }
+            let rest = s.i_load(q.at[from..from + 8].try_into().unwrap());
+            s.i_store(rest, (&mut q.at[to..to + 8]).try_into().unwrap());
+        }
     }
 
     /// Shades whatever is still queued; called once the band's triangles are drawn.

@@ -184,6 +184,11 @@ impl Band {
                 fragments += fill_span(s, f, &row, (x, left, right), depth, color);
                 continue;
             }
+            if PLAIN && !Sh::ALL_METHODS {
+                // Phong's (the three methods at once keep blocks of 8).
+                fragments += self.queue_span(s, f, &row, row_start, (x, left, right));
+                continue;
+            }
             while x < right {
                 let lanes = lane_index + Vi::splat(s, x);
                 let inside = lanes.gt(from) & to.gt(lanes);
@@ -200,7 +205,7 @@ impl Band {
     /// the depth test. `PLAIN`: a shading pass of a triangle that is not
     /// part of a self-crossing polygon.
     #[inline(always)]
-    fn block<S: Simd, Sh: Shader, const PLAIN: bool>(
+    pub(super) fn block<S: Simd, Sh: Shader, const PLAIN: bool>(
         &mut self,
         s: S,
         f: &Fill<'_, S, Sh>,
