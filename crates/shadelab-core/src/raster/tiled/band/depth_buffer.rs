@@ -6,8 +6,9 @@
 //! and a pair of blocks (`pairs.rs`, one 512-bit vector on AVX-512) fills
 //! exactly one. The colour buffers are placed half a page from the depths
 //! (`skew` in `mod.rs`), so they get the same alignment. A `Vec<f32>`
-//! starts wherever the allocator puts it (16-byte alignment), where half
-//! the blocks of 8 straddled two lines and every pair did.
+//! starts wherever the allocator puts it, only sure to be 16-byte aligned:
+//! 16 bytes past a line, half the blocks of 8 and every pair straddle two
+//! lines (BENCHMARKS.md, "Span blocks in pairs, and rows on cache lines").
 
 use std::ops::{Deref, DerefMut};
 
