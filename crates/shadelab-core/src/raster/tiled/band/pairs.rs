@@ -153,17 +153,22 @@ fn blocks<S: Simd, Sh: Shader>(
     depth: &mut [f32],
     color: &mut [i32],
 ) -> u32 {
-    let (from, to) = (Vi::splat(s, left - 1), Vi::splat(s, right));
     let depth = depth.as_chunks_mut::<8>().0;
     let color = color.as_chunks_mut::<8>().0;
     let mut fragments = 0;
     for (k, (depth, color)) in depth.iter_mut().zip(color).enumerate() {
         let x = x + 8 * k as i32;
-        let lanes = Vi::ramp(s) + Vi::splat(s, x);
-        let inside = lanes.gt(from) & to.gt(lanes);
+        let inside = inside(s, (x, left, right));
         fragments += shade_block::<S, Sh, true>(s, f, inside, f.column(x), row, depth, color);
     }
     fragments
+}
+
+/// The lanes of the block at column `x` that lie in the span `left..right`.
+#[inline(always)]
+fn inside<S: Simd>(s: S, (x, left, right): Span) -> Vi<S> {
+    let lanes = Vi::ramp(s) + Vi::splat(s, x);
+    lanes.gt(Vi::splat(s, left - 1)) & Vi::splat(s, right).gt(lanes)
 }
 
 impl Band {
@@ -218,12 +223,10 @@ impl Band {
         (x, left, right): Span,
         count: usize,
     ) -> u32 {
-        let (from, to) = (Vi::splat(s, left - 1), Vi::splat(s, right));
         let mut fragments = 0;
         for k in 0..count {
             let x = x + 8 * k as i32;
-            let lanes = Vi::ramp(s) + Vi::splat(s, x);
-            let inside = lanes.gt(from) & to.gt(lanes);
+            let inside = inside(s, (x, left, right));
             fragments += self.block::<S, Sh, true>(s, f, inside, row_start + x as usize, x, row);
         }
         fragments
