@@ -22,9 +22,10 @@
 //! * **spans** (large triangles): per row, each edge's boundary column is
 //!   found exactly (see `span` in `walk.rs`) and the span between them is filled with
 //!   no edge arithmetic per pixel, the columns stepped in vectors. Nearly
-//!   all of a span's blocks are whole: flat and Gouraud draw them two at a
-//!   time in 16 lanes (`pairs.rs`), and when all lanes pass the depth
-//!   test, their colours are stored without reading back the old ones.
+//!   all of a span's blocks are whole: flat and Gouraud draw them, and
+//!   Phong queues them, two at a time in 16 lanes (`pairs.rs`); when all
+//!   lanes pass the depth test, flat's and Gouraud's colours are stored
+//!   without reading back the old ones.
 //!
 //! Then per block: depth test "less" (depth from its plane), and shading
 //! specialised per method by the [`crate::shade::Shader`] type parameter. Phong does not
