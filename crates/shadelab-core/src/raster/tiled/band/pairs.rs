@@ -166,7 +166,7 @@ fn blocks<S: Simd, Sh: Shader>(
 
 /// The lanes of the block at column `x` that lie in the span `left..right`.
 #[inline(always)]
-fn inside<S: Simd>(s: S, (x, left, right): Span) -> Vi<S> {
+pub(super) fn inside<S: Simd>(s: S, (x, left, right): Span) -> Vi<S> {
     let lanes = Vi::ramp(s) + Vi::splat(s, x);
     lanes.gt(Vi::splat(s, left - 1)) & Vi::splat(s, right).gt(lanes)
 }

@@ -2,7 +2,7 @@
 //! 8 pixels or in spans, the depth test, and each block's colours (flat,
 //! Gouraud) or its place in Phong's queue (`queue.rs`).
 
-use super::pairs::fill_span;
+use super::pairs::{fill_span, inside};
 use super::{Band, Pass};
 use crate::raster::tiled::setup::{plane_count, Plane, Triangle, Walk, GOURAUD_OF_ALL};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
@@ -165,7 +165,6 @@ impl Band {
         band_y0: u32,
     ) {
         let t = f.t;
-        let lane_index = Vi::ramp(s);
         let mut fragments = 0;
         for y in rows {
             let Some((left, right)) = span(t, y) else {
@@ -173,7 +172,6 @@ impl Band {
             };
             let row_start = (y as u32 - band_y0) as usize * self.stride;
             let row = f.row_all(y);
-            let (from, to) = (Vi::splat(s, left - 1), Vi::splat(s, right));
             let mut x = left & !7;
             if PLAIN && !Sh::DEFERRED {
                 // The row's blocks as whole chunks of its buffers, two at a
@@ -190,8 +188,7 @@ impl Band {
                 continue;
             }
             while x < right {
-                let lanes = lane_index + Vi::splat(s, x);
-                let inside = lanes.gt(from) & to.gt(lanes);
+                let inside = inside(s, (x, left, right));
                 fragments +=
                     self.block::<S, Sh, PLAIN>(s, f, inside, row_start + x as usize, x, &row);
                 x += 8;
