@@ -5,6 +5,10 @@
 // camera turned 5° a frame as an orbit step turns it, 3 frames of warm-up, median of FRAMES (30);
 // then the three methods in one call (`renderMethods`, as the page draws panels that share a scene),
 // and each half of their rows in an engine of its own (as two workers draw them on two cores).
+// PAUSE=ms waits that long before each frame, as a user's keys do between orbit steps: the
+// machine's caches lose the engine's data meanwhile, and the frame pays to read it again
+// (BENCHMARKS.md, "The viewer's latency": a frame after 250 ms idle costs about 1.5× one
+// drawn right after the last).
 import fs from 'node:fs';
 import path from 'node:path';
 import { Shadelab } from '../../web/js/shadelab.js';
@@ -48,6 +52,8 @@ zoom = 1.0
 const [wasm, ...models] = process.argv.slice(2);
 const module = new WebAssembly.Module(fs.readFileSync(wasm));
 const frames = Number(process.env.FRAMES ?? 30);
+const pauseMs = Number(process.env.PAUSE ?? 0);
+const pause = () => (pauseMs > 0 ? new Promise((resolve) => setTimeout(resolve, pauseMs)) : null);
 for (const model of models.length ? models : ['teapot']) {
   const engine = await Shadelab.create(module);
   let source = 'teapot';
@@ -60,6 +66,7 @@ for (const model of models.length ? models : ['teapot']) {
     const scene = SCENE.replace('source = "teapot"', `source = ${JSON.stringify(source)}`).replace('shading = "flat"', `shading = "${method}"`);
     const times = [];
     for (let i = 0; i < frames + 3; i++) {
+      await pause();
       const frame = engine.render(scene.replace('yaw = 0.0', `yaw = ${(i * 5) % 360}.0`));
       if (i >= 3) times.push(frame.ms);
     }
@@ -71,6 +78,7 @@ for (const model of models.length ? models : ['teapot']) {
     const scene = SCENE.replace('source = "teapot"', `source = ${JSON.stringify(source)}`);
     const times = [];
     for (let i = 0; i < frames + 3; i++) {
+      await pause();
       const { ms } = engine.renderMethods(scene.replace('yaw = 0.0', `yaw = ${(i * 5) % 360}.0`));
       if (i >= 3) times.push(ms);
     }
@@ -83,6 +91,7 @@ for (const model of models.length ? models : ['teapot']) {
       if (model !== 'teapot') half.loadFile(source, fs.readFileSync(model));
       const times = [];
       for (let i = 0; i < frames + 3; i++) {
+        await pause();
         const { ms } = half.renderMethods(scene.replace('yaw = 0.0', `yaw = ${(i * 5) % 360}.0`), [], [part, 2]);
         if (i >= 3) times.push(ms);
       }

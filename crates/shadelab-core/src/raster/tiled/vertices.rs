@@ -19,7 +19,11 @@ pub(super) struct VertexTable {
     pub(super) key_geometry: u64,
     pub(super) key_normals: Vec<u32>,
     /// Per corner, its vertex.
-    pub(super) corner_vertex: Vec<u32>,
+    corner_vertex: Vec<u32>,
+    /// Whether each corner's vertex is its normal index (no normal is
+    /// shared by two positions): `corner_vertex` then equals the corner
+    /// normal indices it was built from.
+    identity: bool,
     /// Per vertex, its position and normal index (`u32::MAX` when unused).
     pub(super) position: Vec<u32>,
     pub(super) normal: Vec<u32>,
@@ -66,6 +70,22 @@ impl VertexTable {
             self.position[id as usize] = p;
         }
         self.used = self.position.iter().filter(|&&p| p != u32::MAX).count() as u64;
+        self.identity = extra.is_empty();
+    }
+
+    /// Per corner, its vertex, for the corner normal indices the table was
+    /// last built for (`corner_normals`, unless it is not in use). Where
+    /// each corner's vertex is its normal index (nearly every mesh), that
+    /// is `corner_normals` itself: setup, which reads a corner's normal
+    /// index for Phong, then reads the same memory for Gouraud's colour
+    /// instead of a second array as large (1.2 MB on the dragon, read per
+    /// frame of the three methods at once).
+    pub(super) fn corner_vertex<'a>(&'a self, corner_normals: &'a [u32]) -> &'a [u32] {
+        if self.identity {
+            corner_normals
+        } else {
+            &self.corner_vertex
+        }
     }
 }
 
@@ -186,7 +206,36 @@ pub(super) fn light_vertices(
 
 #[cfg(test)]
 mod tests {
-    use super::same;
+    use glam::Vec3;
+
+    use super::{same, VertexTable};
+    use crate::mesh::Mesh;
+
+    /// A square of two triangles: positions 0 1 2 and 0 2 3.
+    fn square() -> Mesh {
+        let positions = vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
+        Mesh::from_polygons(positions, &[[0, 1, 2], [0, 2, 3]]).unwrap()
+    }
+
+    #[test]
+    fn corner_vertex_is_the_normal_index_unless_a_normal_is_shared() {
+        let mesh = square();
+        // One normal per position: each corner's vertex is its normal index.
+        let per_position = [0, 1, 2, 0, 2, 3];
+        let mut table = VertexTable::default();
+        table.update(&mesh, &per_position, 4);
+        assert!(table.identity);
+        assert_eq!(table.corner_vertex, per_position);
+        assert_eq!(table.corner_vertex(&per_position), per_position);
+        // One normal for the whole square (flat): positions 1..3 share
+        // position 0's normal, so they get vertices of their own.
+        let shared = [0; 6];
+        table.update(&mesh, &shared, 1);
+        assert!(!table.identity);
+        assert_eq!(table.corner_vertex(&shared), [0, 1, 2, 0, 2, 3]);
+        assert_eq!(table.position, [0, 1, 2, 3]);
+        assert_eq!(table.normal, [0, 0, 0, 0]);
+    }
 
     #[test]
     fn same_finds_any_difference() {
