@@ -214,7 +214,7 @@ mod tests {
     /// A square of two triangles: positions 0 1 2 and 0 2 3.
     fn square() -> Mesh {
         let positions = vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
-        Mesh::from_polygons(positions, &[[0, 1, 2], [0, 2, 3]]).unwrap()
+        Mesh::from_polygons(positions, [[0, 1, 2], [0, 2, 3]]).unwrap()
     }
 
     #[test]
