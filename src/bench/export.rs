@@ -117,7 +117,7 @@ pub(super) fn write_geometry(
         let centroid = points.iter().sum::<Vec3>() / points.len() as f32;
         let polygon: Vec<u32> = corners
             .map(|c| {
-                let key = (mesh.corners()[c], normals.corner[c]);
+                let key = (mesh.corners()[c], normals.corner()[c]);
                 *ids.entry(key).or_insert_with(|| {
                     let p = mesh.positions()[key.0 as usize];
                     let n = normals.normals[key.1 as usize];

@@ -76,13 +76,76 @@ pub enum MeshError {
 /// One normal per polygon corner, by index into a table of unit normals.
 ///
 /// Corners that share a normal share its index, so a renderer can light each
-/// distinct (position, normal) pair once.
-#[derive(Debug, Clone, PartialEq, Default)]
+/// distinct (position, normal) pair once. The indices are fixed once made
+/// (read them with [`CornerNormals::corner`]): a renderer keys what it
+/// derives from them by an id, as it keys the geometry by
+/// [`Mesh::geometry_id`], instead of comparing them every frame. The normals
+/// themselves may change freely.
+#[derive(Debug, Clone)]
 pub struct CornerNormals {
     /// Distinct unit normals.
     pub normals: Vec<Vec3>,
     /// For each corner of each polygon, in [`Mesh::corners`] order, an index into `normals`.
-    pub corner: Vec<u32>,
+    corner: Vec<u32>,
+    /// The largest index in `corner` (0 when there is none), found once so
+    /// that a renderer checks the indices against `normals` every frame
+    /// without reading them all.
+    largest: u32,
+    /// Names `corner` (see [`CornerNormals::indices_id`]).
+    indices_id: u64,
+}
+
+/// Two sets of corner normals are equal when their contents are, whatever
+/// their ids.
+impl PartialEq for CornerNormals {
+    fn eq(&self, other: &CornerNormals) -> bool {
+        self.normals == other.normals && self.corner == other.corner
+    }
+}
+
+impl Default for CornerNormals {
+    fn default() -> CornerNormals {
+        CornerNormals::new(Vec::new(), Vec::new())
+    }
+}
+
+impl CornerNormals {
+    /// Normals `normals` and, per corner of each polygon in [`Mesh::corners`]
+    /// order, an index into them (checked where they meet a mesh:
+    /// [`Mesh::with_file_normals`], or the renderer for a scene's normals).
+    pub fn new(normals: Vec<Vec3>, corner: Vec<u32>) -> CornerNormals {
+        CornerNormals {
+            normals,
+            largest: corner.iter().copied().max().unwrap_or(0),
+            corner,
+            indices_id: fresh_geometry_id(),
+        }
+    }
+
+    /// For each corner of each polygon, in [`Mesh::corners`] order, an index
+    /// into [`CornerNormals::normals`].
+    pub fn corner(&self) -> &[u32] {
+        &self.corner
+    }
+
+    /// The largest index in [`CornerNormals::corner`] (0 when there are no
+    /// corners).
+    pub(crate) fn largest_index(&self) -> u32 {
+        self.largest
+    }
+
+    /// The normals and the corners' indices, given back.
+    pub fn into_parts(self) -> (Vec<Vec3>, Vec<u32>) {
+        (self.normals, self.corner)
+    }
+
+    /// A number that names the corner indices: two values with the same id
+    /// have the same indices (a clone keeps its original's id; every new
+    /// value gets a number none had before), so the vertex table built from
+    /// them is checked by comparing two numbers, not two arrays of a few MB.
+    pub(crate) fn indices_id(&self) -> u64 {
+        self.indices_id
+    }
 }
 
 /// A polygon mesh: vertex positions and convex polygons wound counter-clockwise
@@ -109,7 +172,7 @@ impl PartialEq for Mesh {
     }
 }
 
-/// A number no mesh built so far has had.
+/// A number no mesh or set of corner normals built so far has had.
 fn fresh_geometry_id() -> u64 {
     static NEXT: AtomicU64 = AtomicU64::new(1);
     NEXT.fetch_add(1, Ordering::Relaxed)

@@ -213,7 +213,7 @@ pub fn vertex_normals(
                 }
             })
             .collect();
-        return CornerNormals { normals, corner };
+        return CornerNormals::new(normals, corner);
     }
 
     // Whether face `other` takes part in the normals of face `own`'s corners.
@@ -254,5 +254,5 @@ pub fn vertex_normals(
             })
         })
         .collect();
-    CornerNormals { normals, corner }
+    CornerNormals::new(normals, corner)
 }

@@ -226,15 +226,13 @@ fn camera_out_of_range() {
 fn normals_and_lighting_out_of_range() {
     let good = good_scene();
     let corners = good.mesh.corners().len();
-    let mut short = good.normals.clone();
-    short.corner.pop();
-    let out_of_range = CornerNormals {
-        normals: vec![Vec3::Z],
-        corner: vec![1; corners],
-    };
+    let (normals, mut corner) = good.normals.clone().into_parts();
+    corner.pop();
+    let short = CornerNormals::new(normals, corner);
+    let out_of_range = CornerNormals::new(vec![Vec3::Z], vec![1; corners]);
     for normals in [short, out_of_range, CornerNormals::default()] {
         let expected = RenderError::NormalsMismatch {
-            normals: normals.corner.len(),
+            normals: normals.corner().len(),
             corners,
         };
         let scene = Scene {

@@ -308,10 +308,7 @@ fn nan_is_an_error() {
     ));
 
     // NaN normals: no panic, whatever colour comes out.
-    let normals = CornerNormals {
-        normals: vec![Vec3::splat(nan)],
-        corner: vec![0; mesh.corners().len()],
-    };
+    let normals = CornerNormals::new(vec![Vec3::splat(nan)], vec![0; mesh.corners().len()]);
     let scene = scene(mesh, normals, good);
     for shading in Shading::ALL {
         let (_, stats) = render(&scene, &options(24, 24, shading)).unwrap();

@@ -19,7 +19,7 @@ const ALL: [NormalWeighting; 3] = [
 ];
 
 fn corner_normal(normals: &CornerNormals, corner: usize) -> DVec3 {
-    d(normals.normals[normals.corner[corner] as usize])
+    d(normals.normals[normals.corner()[corner] as usize])
 }
 
 /// Every corner of `vertex` has the normal `expected` (normalised here).
@@ -62,7 +62,7 @@ fn cube_vertices_in_every_weighting() {
         let mesh = builtin_model("cube", Some(detail)).unwrap();
         for weighting in ALL {
             let normals = vertex_normals(&mesh, weighting, None);
-            assert_eq!(normals.corner.len(), mesh.corners().len());
+            assert_eq!(normals.corner().len(), mesh.corners().len());
             for (v, &p) in mesh.positions().iter().enumerate() {
                 let p = d(p);
                 let on_face = |x: f64| {

@@ -226,10 +226,10 @@ fn nan_triangles() {
         ));
     }
     let mesh = builtin_model("icosphere", Some(1)).unwrap();
-    let normals = CornerNormals {
-        normals: vec![Vec3::splat(f32::NAN), Vec3::Z],
-        corner: (0..mesh.corners().len() as u32).map(|c| c % 2).collect(),
-    };
+    let normals = CornerNormals::new(
+        vec![Vec3::splat(f32::NAN), Vec3::Z],
+        (0..mesh.corners().len() as u32).map(|c| c % 2).collect(),
+    );
     let scene = scene(
         mesh,
         normals,

@@ -17,7 +17,7 @@ const WEIGHTINGS: [NormalWeighting; 3] = [
 /// Each corner's normal, in corner order.
 fn per_corner(mesh: &Mesh, weighting: NormalWeighting, crease: Option<f32>) -> Vec<Vec3> {
     let n = vertex_normals(mesh, weighting, crease);
-    n.corner.iter().map(|&i| n.normals[i as usize]).collect()
+    n.corner().iter().map(|&i| n.normals[i as usize]).collect()
 }
 
 #[track_caller]
@@ -90,10 +90,10 @@ fn tent_normals_by_hand() {
     }
     // Corners that share a vertex and a group share one normal index.
     let n = vertex_normals(&tent(Some([1, 1])), NormalWeighting::Uniform, None);
-    assert_eq!(n.corner[2], n.corner[7], "vertex 1 in both faces");
-    assert_eq!(n.corner[3], n.corner[6], "vertex 0 in both faces");
+    assert_eq!(n.corner()[2], n.corner()[7], "vertex 1 in both faces");
+    assert_eq!(n.corner()[3], n.corner()[6], "vertex 0 in both faces");
     let n = vertex_normals(&tent(Some([1, 2])), NormalWeighting::Uniform, None);
-    assert_ne!(n.corner[2], n.corner[7]);
+    assert_ne!(n.corner()[2], n.corner()[7]);
     assert_eq!(
         n.normals.len(),
         8,
@@ -145,7 +145,7 @@ fn pyramid_split_into_two_groups() {
         );
     }
     let n = vertex_normals(&mesh, NormalWeighting::Uniform, None);
-    let apex: Vec<u32> = [2, 5, 8, 11].map(|c| n.corner[c]).to_vec();
+    let apex: Vec<u32> = [2, 5, 8, 11].map(|c| n.corner()[c]).to_vec();
     assert_eq!(apex[0], apex[1]);
     assert_eq!(apex[2], apex[3]);
     assert_ne!(apex[0], apex[2]);

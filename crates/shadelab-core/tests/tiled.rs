@@ -251,10 +251,7 @@ fn triangle_mesh(points: &[Vec3], normals: &[Vec3]) -> (Mesh, CornerNormals) {
         .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
         .collect();
     let mesh = Mesh::from_polygons(points.to_vec(), &polygons).unwrap();
-    let corners = CornerNormals {
-        normals: normals.to_vec(),
-        corner: (0..points.len() as u32).collect(),
-    };
+    let corners = CornerNormals::new(normals.to_vec(), (0..points.len() as u32).collect());
     (mesh, corners)
 }
 

@@ -294,10 +294,7 @@ fn parse(text: &str, name: &str) -> Result<(Mesh, Summary), LoadError> {
         && normals.iter().all(|n| n.try_normalize().is_some())
     {
         mesh = mesh
-            .with_file_normals(CornerNormals {
-                normals,
-                corner: corner_normals,
-            })
+            .with_file_normals(CornerNormals::new(normals, corner_normals))
             .map_err(mesh_error(name))?;
     }
     if let Some(groups) = summary.smoothing.take() {

@@ -221,7 +221,7 @@ pub fn parse_ply(bytes: &[u8], name: &str) -> Result<Mesh, LoadError> {
             .all(|n| !n.is_finite() || n.try_normalize().is_some())
     {
         let corner = mesh.corners().to_vec();
-        mesh.with_file_normals(CornerNormals { normals, corner })
+        mesh.with_file_normals(CornerNormals::new(normals, corner))
             .map_err(mesh_error(name))
     } else {
         Ok(mesh)

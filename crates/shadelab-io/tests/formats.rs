@@ -136,7 +136,7 @@ fn ply_ascii_cube_keeps_quads_and_normals() {
     assert_eq!(mesh.polygon_count(), 6);
     assert_eq!(mesh.polygon(1), &faces[1]);
     let normals = mesh.file_normals().expect("normals");
-    assert_eq!(normals.corner, mesh.corners());
+    assert_eq!(normals.corner(), mesh.corners());
     assert!((normals.normals[7] - Vec3::splat(0.5).normalize()).length() < 1e-6);
 }
 

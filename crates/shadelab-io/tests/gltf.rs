@@ -27,7 +27,7 @@ fn gltf_embedded_with_node_transforms() {
     }
     assert_eq!(mesh.polygon(4), &[4, 6, 5]);
     let normals = mesh.file_normals().expect("every primitive has NORMAL");
-    assert_eq!(normals.corner, mesh.corners());
+    assert_eq!(normals.corner(), mesh.corners());
     assert!((normals.normals[0] - Vec3::splat(-1.0).normalize()).length() < 1e-6);
 }
 

@@ -161,9 +161,9 @@ fn v_vt_vn_form_attaches_file_normals() {
     let mesh = loaded(&text);
     assert_eq!(arities(&mesh), vec![4]);
     let normals = mesh.file_normals().expect("every corner has a normal");
-    assert_eq!(normals.corner.len(), 4);
+    assert_eq!(normals.corner().len(), 4);
     let per_corner: Vec<Vec3> = normals
-        .corner
+        .corner()
         .iter()
         .map(|&i| normals.normals[i as usize])
         .collect();
@@ -188,7 +188,7 @@ fn v_slash_slash_vn_form_attaches_file_normals_per_corner() {
     assert_eq!(arities(&mesh), vec![3, 3]);
     let normals = mesh.file_normals().expect("complete normals");
     let per_corner: Vec<Vec3> = normals
-        .corner
+        .corner()
         .iter()
         .map(|&i| normals.normals[i as usize])
         .collect();
@@ -204,7 +204,7 @@ fn negative_normal_indices_are_relative() {
     let mesh = loaded(&text);
     let normals = mesh.file_normals().expect("complete normals");
     let per_corner: Vec<Vec3> = normals
-        .corner
+        .corner()
         .iter()
         .map(|&i| normals.normals[i as usize])
         .collect();
@@ -308,7 +308,7 @@ f 4//2 5//2 6//2
         .file_normals()
         .expect("complete normals across objects");
     let per_corner: Vec<Vec3> = normals
-        .corner
+        .corner()
         .iter()
         .map(|&i| normals.normals[i as usize])
         .collect();

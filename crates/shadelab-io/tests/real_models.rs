@@ -250,7 +250,7 @@ fn round_trip(file: &str) {
         positions,
         &polys,
         &file_normals.normals,
-        &file_normals.corner,
+        file_normals.corner(),
     );
     let ply_files = [
         put(
@@ -285,7 +285,10 @@ fn round_trip(file: &str) {
             corner_of.extend([r.start, r.start + k, r.start + k + 1]);
         }
     }
-    let fan_normals: Vec<u32> = corner_of.iter().map(|&c| file_normals.corner[c]).collect();
+    let fan_normals: Vec<u32> = corner_of
+        .iter()
+        .map(|&c| file_normals.corner()[c])
+        .collect();
     let twin = put(
         dir,
         "twin-normals.obj",

@@ -166,7 +166,7 @@ fn full_example_resolves() {
     assert_eq!(scene.material.ka, Rgb8::new(255, 60, 60).to_rgb());
     assert_eq!(scene.material.shininess, 32.0);
     // One normal per corner of the teapot.
-    assert_eq!(scene.normals.corner.len(), scene.mesh.corners().len());
+    assert_eq!(scene.normals.corner().len(), scene.mesh.corners().len());
     assert!(scene.mesh.polygon_count() > 100);
 }
 
@@ -195,7 +195,7 @@ height = 32
     assert!(options.gouraud_specular);
     assert_eq!(options.background, Rgb8::new(10, 20, 30));
     assert_eq!((options.width, options.height), (64, 32));
-    assert_eq!(scene.normals.corner.len(), scene.mesh.corners().len());
+    assert_eq!(scene.normals.corner().len(), scene.mesh.corners().len());
     for shading in ["flat", "phong"] {
         let (_, options) = resolved(&format!("[render]\nshading = \"{shading}\"\n"));
         assert_eq!(options.shading.name(), shading);
@@ -204,7 +204,7 @@ height = 32
         let (scene, _) = resolved(&format!(
             "[model]\nsource = \"cube\"\nnormals = \"{normals}\"\n"
         ));
-        assert_eq!(scene.normals.corner.len(), scene.mesh.corners().len());
+        assert_eq!(scene.normals.corner().len(), scene.mesh.corners().len());
     }
 }
 

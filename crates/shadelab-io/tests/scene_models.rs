@@ -129,7 +129,7 @@ fn normals_file_for_an_obj() {
         let (scene, _) = parse(&text).resolve(dir.path()).expect("file normals");
         let per_corner: Vec<Vec3> = scene
             .normals
-            .corner
+            .corner()
             .iter()
             .map(|&i| scene.normals.normals[i as usize])
             .collect();

@@ -233,7 +233,7 @@ fn inspect_method(
     let corner_view = |c: usize| {
         let vertex = mesh.corners()[c];
         let position = mesh.positions()[vertex as usize];
-        let normal = scene.normals.normals[scene.normals.corner[c] as usize] * sign;
+        let normal = scene.normals.normals[scene.normals.corner()[c] as usize] * sign;
         CornerView {
             corner: c,
             vertex,

@@ -286,7 +286,7 @@ pub fn draw_overlays(
         }
         if overlays.vertex_normals {
             for c in range.clone() {
-                let n = scene.normals.normals[scene.normals.corner[c] as usize] * sign;
+                let n = scene.normals.normals[scene.normals.corner()[c] as usize] * sign;
                 normal_segment(
                     &mut canvas,
                     &projector,

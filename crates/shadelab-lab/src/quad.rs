@@ -45,10 +45,7 @@ pub fn quad_scene(angle_degrees: f32, size: u32) -> (Scene, RenderOptions) {
         .collect();
     let mesh = Mesh::from_polygons(positions, [[0u32, 1, 2, 3]]).expect("a square is a mesh");
     // Vertex 0 faces the light; the others face away and get no diffuse light.
-    let normals = CornerNormals {
-        normals: vec![Vec3::Z, -Vec3::Z],
-        corner: vec![0, 1, 1, 1],
-    };
+    let normals = CornerNormals::new(vec![Vec3::Z, -Vec3::Z], vec![0, 1, 1, 1]);
     let scene = Scene {
         mesh,
         normals,

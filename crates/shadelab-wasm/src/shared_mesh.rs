@@ -49,7 +49,7 @@ pub fn encode(mesh: &Mesh) -> Vec<u8> {
         + mesh.corners().len()
         + polygons
         + 1
-        + normals.map_or(0, |n| 3 * n.normals.len() + n.corner.len())
+        + normals.map_or(0, |n| 3 * n.normals.len() + n.corner().len())
         + groups.map_or(0, <[u32]>::len);
     let mut out = Vec::with_capacity(4 * words);
     let mut word = |w: u32| out.extend_from_slice(&w.to_le_bytes());
@@ -75,7 +75,7 @@ pub fn encode(mesh: &Mesh) -> Vec<u8> {
         for v in &n.normals {
             v.to_array().into_iter().for_each(|x| word(x.to_bits()));
         }
-        n.corner.iter().for_each(|&i| word(i));
+        n.corner().iter().for_each(|&i| word(i));
     }
     if let Some(g) = groups {
         g.iter().for_each(|&x| word(x));
@@ -151,7 +151,7 @@ pub fn decode(bytes: &[u8]) -> Result<(Mesh, Option<CornerNormals>), EngineError
     let file_normals = if flags & HAS_NORMALS != 0 {
         let normals = words.vec3s(normals as usize)?;
         let corner = words.u32s(corners.len())?;
-        Some(CornerNormals { normals, corner })
+        Some(CornerNormals::new(normals, corner))
     } else {
         None
     };

@@ -24,7 +24,6 @@ pub(crate) use self::assemble::Geometry;
 pub use self::window::to_window;
 
 use glam::Vec3;
-use rayon::prelude::*;
 
 use crate::color::Rgb;
 use crate::image::Image;
@@ -315,20 +314,14 @@ fn set_lighting(lighting: &mut Lighting, scene: &Scene, options: &RenderOptions)
 pub(crate) fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
     options.check()?;
     scene.camera.validate()?;
-    // A maximum over all corners (no early exit, so the loop vectorizes),
-    // in parallel: it runs every frame over every corner.
-    let largest = scene
-        .normals
-        .corner
-        .par_chunks(1 << 15)
-        .map(|chunk| chunk.iter().fold(0, |m, &i| m.max(i)))
-        .max()
-        .unwrap_or(0);
-    if scene.normals.corner.len() != scene.mesh.corners().len()
-        || (!scene.normals.corner.is_empty() && largest as usize >= scene.normals.normals.len())
+    // The indices' maximum is found once, when they are made: a frame
+    // reads none of them here.
+    let largest = scene.normals.largest_index();
+    if scene.normals.corner().len() != scene.mesh.corners().len()
+        || (!scene.normals.corner().is_empty() && largest as usize >= scene.normals.normals.len())
     {
         return Err(RenderError::NormalsMismatch {
-            normals: scene.normals.corner.len(),
+            normals: scene.normals.corner().len(),
             corners: scene.mesh.corners().len(),
         });
     }

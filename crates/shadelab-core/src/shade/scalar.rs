@@ -91,7 +91,7 @@ pub(crate) fn with_method<V: MethodVisitor>(
 
 impl SceneRefs<'_> {
     fn corner_normal(&self, corner: usize) -> Vec3 {
-        self.normals.normals[self.normals.corner[corner] as usize]
+        self.normals.normals[self.normals.corner()[corner] as usize]
     }
 }
 
@@ -140,7 +140,7 @@ impl Method<3> for GouraudMethod<'_> {
     fn corner(&mut self, corner: usize, vertex: u32, back: bool) -> [f32; 3] {
         let scene = self.scene;
         let terms = self.terms;
-        let normal_index = scene.normals.corner[corner];
+        let normal_index = scene.normals.corner()[corner];
         *self
             .lit
             .entry((vertex, normal_index, back))

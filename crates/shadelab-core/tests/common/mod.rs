@@ -347,10 +347,7 @@ pub fn clipped_scenes() -> [(&'static str, Scene); 2] {
         [[0u32, 1, 2, 3]],
     )
     .unwrap();
-    let up = CornerNormals {
-        normals: vec![Vec3::Y],
-        corner: vec![0; 4],
-    };
+    let up = CornerNormals::new(vec![Vec3::Y], vec![0; 4]);
     let floor = scene(
         floor,
         up,
@@ -367,10 +364,7 @@ pub fn clipped_scenes() -> [(&'static str, Scene); 2] {
 
 /// Corner normals given explicitly, one per corner (no sharing).
 pub fn explicit_normals(normals: &[Vec3]) -> CornerNormals {
-    CornerNormals {
-        normals: normals.to_vec(),
-        corner: (0..normals.len() as u32).collect(),
-    }
+    CornerNormals::new(normals.to_vec(), (0..normals.len() as u32).collect())
 }
 
 /// Each corner gets its face's normal (`+z` for a degenerate face).

@@ -402,11 +402,8 @@ impl Builder {
         let usable = |n: &Vec3| !n.is_finite() || n.try_normalize().is_some();
         if self.all_normals && self.normals.iter().all(usable) {
             let corner = mesh.corners().to_vec();
-            mesh.with_file_normals(CornerNormals {
-                normals: self.normals,
-                corner,
-            })
-            .map_err(mesh_error(name))
+            mesh.with_file_normals(CornerNormals::new(self.normals, corner))
+                .map_err(mesh_error(name))
         } else {
             Ok(mesh)
         }

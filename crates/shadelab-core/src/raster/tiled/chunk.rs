@@ -84,7 +84,7 @@ impl Frame<'_> {
         };
         let surface = || {
             let normals = &self.scene.normals;
-            let n = normals.normals[normals.corner[corner] as usize];
+            let n = normals.normals[normals.corner()[corner] as usize];
             let p = self.scene.mesh.positions()[self.scene.mesh.corners()[corner] as usize];
             [n.x, n.y, n.z, p.x, p.y, p.z]
         };
@@ -116,7 +116,7 @@ impl Frame<'_> {
             out[..3].copy_from_slice(&c);
         } else if A >= 6 {
             let normals = &self.scene.normals;
-            let n = normals.normals[normals.corner[corner] as usize];
+            let n = normals.normals[normals.corner()[corner] as usize];
             let p = self.scene.mesh.positions()[self.scene.mesh.corners()[corner] as usize];
             out[..6].copy_from_slice(&[n.x, n.y, n.z, p.x, p.y, p.z]);
         }
@@ -136,7 +136,7 @@ impl Frame<'_> {
         }
         if A >= 6 {
             let normals = &self.scene.normals;
-            prefetch(&normals.normals[normals.corner[corner] as usize]);
+            prefetch(&normals.normals[normals.corner()[corner] as usize]);
         }
         // Phong's attributes read the position.
         if A >= 6 {

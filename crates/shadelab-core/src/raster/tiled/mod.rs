@@ -496,7 +496,7 @@ impl TiledRasterizer {
             scene,
             options,
             method,
-            corner_vertex: self.vertices.corner_vertex(&scene.normals.corner),
+            corner_vertex: self.vertices.corner_vertex(scene.normals.corner()),
             centroids: polygons.centroids(),
             phong: &self.phong,
             simd: self.simd.without_avx512(),
