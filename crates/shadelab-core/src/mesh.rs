@@ -78,9 +78,9 @@ pub enum MeshError {
 /// Corners that share a normal share its index, so a renderer can light each
 /// distinct (position, normal) pair once. The indices are fixed once made
 /// (read them with [`CornerNormals::corner`]): a renderer keys what it
-/// derives from them by an id, as it keys the geometry by
-/// [`Mesh::geometry_id`], instead of comparing them every frame. The normals
-/// themselves may change freely.
+/// derives from them by an id, as it keys what it derives from a mesh's
+/// geometry, instead of comparing them every frame. The normals themselves
+/// may change freely.
 #[derive(Debug, Clone)]
 pub struct CornerNormals {
     /// Distinct unit normals.
