@@ -13,8 +13,13 @@
 // with two labels to compare.
 //
 // `--poll light` (the default) polls once a millisecond and reads 8 rows
-// of each canvas (the whole canvas every 10th round): the event is seen
-// with the page's thread mostly idle, as a user's is. `--poll busy` (the
+// of each canvas (the whole canvas every 10th round, once 50 ms have
+// passed): the event is seen with the page's thread mostly idle, as a
+// user's is. The whole canvases are 2.7 MB of `getImageData` at 480²; read
+// every 10th round from the start, as until 2026-12-02, they took a core
+// from the workers during the frame (the dragon's median 19.1 ms against
+// 16.8 without them, in one run; BENCHMARKS.md, "The measure's own reads").
+// Only a frame that leaves the canvases' middle rows alone needs them. `--poll busy` (the
 // measure as first written) polls in a loop of tasks, reading the three
 // canvases whole each time (1.5–5 ms a round on a 2-core machine): it keeps
 // one core busy while the workers draw (on two cores, one of the two that
@@ -168,8 +173,12 @@ function measureInPage({ steps, warmup, poll }) {
     for (let i = 0; i < a.length; i++) if (a[i] !== b[i]) return true;
     return false;
   };
+  // `--poll light` reads whole canvases only for a frame not seen by then.
+  const WHOLE_AFTER_MS = 50;
+  let start = 0;
   const changedNow = (k, before, round) => {
-    if (poll !== 'light' || round % 10 === 9) return differs(before, pixels(k));
+    const whole = round % 10 === 9 && performance.now() - start > WHOLE_AFTER_MS;
+    if (poll !== 'light' || whole) return differs(before, pixels(k));
     return differs(bandOf(k, before), bandPixels(k));
   };
   const rest = () => new Promise((resolve) => setTimeout(resolve, 250));
@@ -184,7 +193,7 @@ function measureInPage({ steps, warmup, poll }) {
       if (k === warmup) counts = frameCounts();
       const before = canvases.map((_, i) => pixels(i));
       const changed = canvases.map(() => false);
-      const start = performance.now();
+      start = performance.now();
       canvases[0].dispatchEvent(new KeyboardEvent('keydown', { key: 'ArrowRight', bubbles: true, cancelable: true }));
       for (let round = 0; ; round++) {
         for (let i = 0; i < canvases.length; i++) if (!changed[i]) changed[i] = changedNow(i, before[i], round);
