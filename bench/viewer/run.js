@@ -19,8 +19,8 @@
 // every 10th round from the start, as until 2026-12-02, they took a core
 // from the workers during the frame (the dragon's median 19.1 ms against
 // 16.8 without them, in one run; BENCHMARKS.md, "The measure's own reads").
-// Only a frame that leaves the canvases' middle rows alone needs them. `--poll busy` (the
-// measure as first written) polls in a loop of tasks, reading the three
+// Only a frame that leaves the canvases' middle rows alone needs them.
+// `--poll busy` (the measure as first written) polls in a loop of tasks, reading the three
 // canvases whole each time (1.5–5 ms a round on a 2-core machine): it keeps
 // one core busy while the workers draw (on two cores, one of the two that
 // draw the halves of a frame), and a frame's answer waits for the round in
@@ -175,8 +175,7 @@ function measureInPage({ steps, warmup, poll }) {
   };
   // `--poll light` reads whole canvases only for a frame not seen by then.
   const WHOLE_AFTER_MS = 50;
-  let start = 0;
-  const changedNow = (k, before, round) => {
+  const changedNow = (k, before, round, start) => {
     const whole = round % 10 === 9 && performance.now() - start > WHOLE_AFTER_MS;
     if (poll !== 'light' || whole) return differs(before, pixels(k));
     return differs(bandOf(k, before), bandPixels(k));
@@ -193,10 +192,10 @@ function measureInPage({ steps, warmup, poll }) {
       if (k === warmup) counts = frameCounts();
       const before = canvases.map((_, i) => pixels(i));
       const changed = canvases.map(() => false);
-      start = performance.now();
+      const start = performance.now();
       canvases[0].dispatchEvent(new KeyboardEvent('keydown', { key: 'ArrowRight', bubbles: true, cancelable: true }));
       for (let round = 0; ; round++) {
-        for (let i = 0; i < canvases.length; i++) if (!changed[i]) changed[i] = changedNow(i, before[i], round);
+        for (let i = 0; i < canvases.length; i++) if (!changed[i]) changed[i] = changedNow(i, before[i], round, start);
         if (changed.every(Boolean)) break;
         if (performance.now() - start > 10000) throw new Error('the panels did not change within 10 s');
         await pause();
