@@ -190,6 +190,10 @@ impl PolygonSource for Assembly<'_> {
         self.centroids
     }
 
+    fn projected(&self) -> &[Projected] {
+        self.projected
+    }
+
     /// The walk (see the module's notes), inlined into the rasterizer's
     /// loop.
     #[inline(always)]

@@ -44,6 +44,9 @@ pub(crate) trait PolygonSource: Sync {
     /// point flat shading lights).
     fn centroids(&self) -> &[Vec3];
 
+    /// Each mesh position's window position (the vertex stage's output).
+    fn projected(&self) -> &[Projected];
+
     /// Hands the visible ones of polygons `faces`, in order, to `sink`,
     /// counting in `stats` the degenerate, invisible, culled and rasterized
     /// ones. Inlined into the rasterizer's loop (implementations are

@@ -19,8 +19,19 @@ use crate::simd::{dispatch, prefetch, Kernel, Simd, SimdLevel, Vf};
 #[derive(Debug, Default)]
 pub(super) struct Bin {
     pub(super) triangles: Vec<Triangle>,
-    /// `plane_count` planes per triangle.
+    /// `plane_count` planes per triangle, but for the triangles whose
+    /// planes the band solves (see `corners`).
     pub(super) planes: Vec<Plane>,
+    /// The three methods at once: per triangle, the mesh corner of its
+    /// first vertex, whose planes the band solves from its corners as setup
+    /// would (`Frame::planes_of`), or `u32::MAX` for a clipped or fan
+    /// triangle, whose planes are in `planes`. Empty for one method.
+    ///
+    /// A mesh triangle's 11 planes are 132 bytes against the corner's 4:
+    /// the bins are less than half as large, and a frame writes and reads
+    /// that much less (the viewer's dragon: the slower part's engine 12.1 →
+    /// 11.2 ms in Chromium; BENCHMARKS.md, "Planes solved in the band").
+    pub(super) corners: Vec<u32>,
     /// The columns `[x0, x1)` of the triangles' boxes, together (empty:
     /// `x0 >= x1`): the band clears and reads back only those.
     pub(super) columns: (i32, i32),
@@ -30,6 +41,7 @@ impl Bin {
     pub(super) fn clear(&mut self) {
         self.triangles.clear();
         self.planes.clear();
+        self.corners.clear();
         self.columns = (i32::MAX, i32::MIN);
     }
 }
@@ -99,6 +111,25 @@ impl Frame<'_> {
             }
         }
         out
+    }
+
+    /// The planes of the three methods at once of mesh triangle `t`, whose
+    /// first corner is `corner`, from the window positions `projected`: as
+    /// `Setup::triangle` would have solved them (the same inputs).
+    #[inline(always)]
+    pub(super) fn planes_of(
+        &self,
+        t: &Triangle,
+        corner: usize,
+        projected: &[Projected],
+    ) -> [Plane; super::setup::PLANES] {
+        let corners = self.scene.mesh.corners();
+        let vertex = |k: usize| {
+            projected[corners[corner + k] as usize]
+                .vertex(self.front_attrs::<ALL_ATTRS>(corner + k))
+        };
+        let v: [ScreenVertex<ALL_ATTRS>; 3] = [vertex(0), vertex(1), vertex(2)];
+        t.planes(&v, ALL_ATTRS, self.options.interpolation)
     }
 
     /// Whether flat shading's colours are set up (in `Triangle::color`).
@@ -229,10 +260,15 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
                 .push([normal.x, normal.y, normal.z, c.x, c.y, c.z]);
             t.color = (self.flat_surfaces.len() - 1) as u32;
         }
+        if A == ALL_ATTRS {
+            // The band solves the planes (see `Bin::corners`).
+            self.bin(&t, &[], first_corner as u32);
+            return;
+        }
         let vertex = |k: usize| p[k].vertex(frame.front_attrs::<A>(first_corner + k));
         let v: [ScreenVertex<A>; 3] = [vertex(0), vertex(1), vertex(2)];
         let planes = t.planes(&v, A, options.interpolation);
-        self.bin(&t, &planes[..plane_count(A)]);
+        self.bin(&t, &planes[..plane_count(A)], u32::MAX);
     }
 
     /// Any other polygon: split into the fan both rasterizers use.
@@ -272,7 +308,7 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
             t.color = color;
             t.flip = if back { -1.0 } else { 1.0 };
             t.once = once;
-            self.bin(&t, &planes[..plane_count(attrs)]);
+            self.bin(&t, &planes[..plane_count(attrs)], u32::MAX);
         }
     }
 }
@@ -287,9 +323,12 @@ impl<const A: usize> Setup<'_, '_, A> {
         (self.flat_surfaces.len() - 1) as u32
     }
 
-    /// Adds a set-up triangle to the bins of the drawn bands it touches.
+    /// Adds a set-up triangle to the bins of the drawn bands it touches:
+    /// with its `planes`, or, for the three methods at once, with the mesh
+    /// corner of its first vertex `corner` and no planes, which the band
+    /// then solves (`u32::MAX`: none, the planes are given).
     #[inline(always)]
-    fn bin(&mut self, t: &Triangle, planes: &[Plane]) {
+    fn bin(&mut self, t: &Triangle, planes: &[Plane], corner: u32) {
         let bands = t.bands();
         let rows = &self.frame.rows;
         let drawn = rows.start as usize / BAND_ROWS as usize
@@ -298,6 +337,9 @@ impl<const A: usize> Setup<'_, '_, A> {
             let bin = &mut self.bins[band];
             bin.triangles.push(*t);
             bin.planes.extend_from_slice(planes);
+            if A == ALL_ATTRS {
+                bin.corners.push(corner);
+            }
             bin.columns = (bin.columns.0.min(t.x0), bin.columns.1.max(t.x1));
         }
     }

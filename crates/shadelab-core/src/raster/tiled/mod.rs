@@ -18,7 +18,8 @@
 //!    edge functions and attribute planes. Anything else (clipped, back
 //!    faces drawn, polygons) is split into the fan both rasterizers use.
 //!    Each triangle is copied, with its planes, into the bin of every band
-//!    it touches. Flat shading lights the chunk's front polygons after its
+//!    it touches (for the three methods at once, a mesh triangle with its
+//!    first corner instead: the band solves its planes, see below). Flat shading lights the chunk's front polygons after its
 //!    walk, 8 at a time; a flat triangle holds its polygon's index into the
 //!    chunk's colours.
 //! 3. **Bands** (parallel): a band reads its chunks' bins in order (see
@@ -60,7 +61,12 @@
 //!   own ([`AllMethods`]). Every plane is solved on its own, clipping
 //!   interpolates each attribute on its own, and each method's colours are
 //!   computed with its own frame's operations, so the bytes and counts are
-//!   those of three frames (`tests/methods.rs`). On meshes of 70k–100k
+//!   those of three frames (`tests/methods.rs`). Their planes are 11 per
+//!   triangle, 132 bytes: a mesh triangle is binned with its first corner
+//!   instead, and each band it touches solves them from the corners with
+//!   setup's function and inputs (`Frame::planes_of`), which on small
+//!   triangles (one band, mostly) costs less than writing and reading
+//!   them, most of all in a frame whose bins' memory has gone cold. On meshes of 70k–100k
 //!   small triangles the three cost about half of three frames
 //!   (WebAssembly, 480²), where setup is now the larger part.
 //! * **A part of the rows, for threads of their own.** The viewer's
@@ -87,12 +93,12 @@ use self::band::{band_rows, Band, Colors, Depths, Pass};
 
 use self::chunk::{Chunk, Frame, SetupKernel};
 pub(crate) use self::setup::BAND_ROWS;
-use self::setup::{plane_count, PLANES};
+use self::setup::{plane_count, Plane, Triangle, PLANES};
 use self::vertices::{light_vertices, VertexTable};
 
 use crate::color::Rgb8;
 use crate::image::Image;
-use crate::raster::{PolygonSource, Rasterize, VertexStage};
+use crate::raster::{PolygonSource, Projected, Rasterize, VertexStage};
 use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::{AllMethods, FlatShader, GouraudShader, Lighting, PhongShader, Shader};
 use crate::simd::{dispatch, Kernel, Simd, SimdLevel};
@@ -130,14 +136,17 @@ enum Output<'a> {
     /// Image rows, and the background colour packed as in the band.
     Image(&'a mut [Rgb8], i32),
     /// The rows of flat's, Gouraud's and Phong's images, drawn at once
-    /// ([`AllMethods`]), and the background colour.
-    Methods([&'a mut [Rgb8]; 3], i32),
+    /// ([`AllMethods`]), the background colour, and what solves the planes
+    /// of the triangles binned with their corners (see `chunk.rs`, `Bin`):
+    /// the frame's attribute sources and window positions.
+    Methods([&'a mut [Rgb8]; 3], i32, (&'a Frame<'a>, &'a [Projected])),
     /// Coverage counts.
     Counts(&'a mut [u32]),
 }
 
-/// One band's work, compiled per SIMD level. With [`AllMethods`] the bins
-/// hold the planes of the three methods at once (`PLANES` per triangle).
+/// One band's work, compiled per SIMD level. With [`AllMethods`] a bin holds
+/// the planes of the three methods at once (`PLANES` per triangle) only for
+/// clipped and fan triangles; a mesh triangle's are solved here.
 struct BandKernel<'a, S> {
     band: &'a mut Band,
     index: usize,
@@ -179,7 +188,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         let flat = S::ATTRS == 0 || all;
         for chunk in self.chunks {
             let bin = &chunk.bins[self.index];
-            for (t, planes) in bin.triangles.iter().zip(bin.planes.chunks_exact(stride)) {
+            let mut draw = |t: &Triangle, planes: &[Plane]| {
                 let color = if flat {
                     chunk.flat_colors[t.color as usize] as u32
                 } else {
@@ -197,6 +206,26 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                     y1,
                     pass,
                 );
+            };
+            if bin.corners.is_empty() {
+                for (t, planes) in bin.triangles.iter().zip(bin.planes.chunks_exact(stride)) {
+                    draw(t, planes);
+                }
+                continue;
+            }
+            // The three methods at once: a mesh triangle's planes are
+            // solved here, from its corners (see `chunk.rs`, `Bin`).
+            let Output::Methods(_, _, (frame, projected)) = self.output else {
+                unreachable!("corners are binned for the three methods at once")
+            };
+            let mut stored = bin.planes.chunks_exact(stride);
+            for (t, &corner) in bin.triangles.iter().zip(&bin.corners) {
+                if corner == u32::MAX {
+                    draw(t, stored.next().expect("a stored triangle's planes"));
+                } else {
+                    let planes = frame.planes_of(t, corner as usize, projected);
+                    draw(t, &planes[..stride]);
+                }
             }
         }
         self.band.flush(simd, self.shader, &lanes);
@@ -210,7 +239,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                 Colors::Shader,
                 Depths::Clear,
             ),
-            Output::Methods([flat, gouraud, phong], background) => {
+            Output::Methods([flat, gouraud, phong], background, _) => {
                 // Phong's read last: it clears the depths the others read.
                 let band = &mut *self.band;
                 for (out, colors, depths) in [
@@ -303,7 +332,7 @@ impl Rasterize for TiledRasterizer {
     ) -> RenderStats {
         let all_rows = 0..options.height;
         let method = Some(options.shading);
-        let mut stats = self.geometry(vertices, scene, options, lighting, method, &all_rows);
+        let (mut stats, _) = self.geometry(vertices, scene, options, lighting, method, &all_rows);
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
         let background = packed(options.background);
@@ -391,7 +420,9 @@ impl TiledRasterizer {
         rows: &std::ops::Range<u32>,
         images: [&mut Image; 3],
     ) -> [RenderStats; 3] {
-        let stats = self.geometry(vertices, scene, options, lighting, None, rows);
+        let (stats, polygons) = self.geometry(vertices, scene, options, lighting, None, rows);
+        let frame = self.frame(scene, options, polygons.centroids(), rows);
+        let sources = (&frame, polygons.projected());
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
         let background = packed(options.background);
@@ -412,7 +443,7 @@ impl TiledRasterizer {
             let index = first_band + k;
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
-            let output = Output::Methods([f, g, p], background);
+            let output = Output::Methods([f, g, p], background, sources);
             match &phong.one_point_light {
                 Some(one) => {
                     band_pass(simd, band, index, chunks, &AllMethods(one), options, output)
@@ -454,15 +485,15 @@ impl TiledRasterizer {
     /// The statistics' lighting evaluations are flat's (those the rows
     /// count: see `render_methods`) and Gouraud's (the frame's), also kept
     /// in `self.evaluations`.
-    fn geometry<V: VertexStage>(
+    fn geometry<'v, V: VertexStage>(
         &mut self,
-        vertices: &mut V,
+        vertices: &'v mut V,
         scene: &Scene,
         options: &RenderOptions,
         lighting: &Lighting,
         method: Option<Shading>,
         rows: &std::ops::Range<u32>,
-    ) -> RenderStats {
+    ) -> (RenderStats, V::Polygons<'v>) {
         let height = options.height;
         self.phong.update(lighting);
         let (vertex_table, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
@@ -477,7 +508,6 @@ impl TiledRasterizer {
         // The frame's vertex stage and Gouraud's vertex lighting are
         // independent: run together, neither waits for the other's last task.
         let (polygons, evaluations) = rayon::join(|| vertices.project(), light);
-        let polygons = &polygons;
 
         let bands = height.div_ceil(BAND_ROWS) as usize;
         let threads = rayon::current_num_threads().max(1);
@@ -506,6 +536,7 @@ impl TiledRasterizer {
             rows: rows.start as i32..rows.end as i32,
         };
         let count = polygons.count();
+        let polygons_walked = &polygons;
         self.chunks
             .par_iter_mut()
             .enumerate()
@@ -517,7 +548,7 @@ impl TiledRasterizer {
                     SetupKernel {
                         chunk,
                         frame: &frame,
-                        polygons,
+                        polygons: polygons_walked,
                         faces: start..end,
                     },
                 );
@@ -539,6 +570,30 @@ impl TiledRasterizer {
         }
         stats.lighting_evaluations += flat_evaluations;
         self.evaluations = (flat_evaluations, evaluations);
-        stats
+        (stats, polygons)
+    }
+
+    /// What a band solving the three methods' planes reads of the frame
+    /// (as setup's [`Frame`], built in `geometry`).
+    fn frame<'a>(
+        &'a self,
+        scene: &'a Scene,
+        options: &'a RenderOptions,
+        centroids: &'a [glam::Vec3],
+        rows: &std::ops::Range<u32>,
+    ) -> Frame<'a> {
+        Frame {
+            scene,
+            options,
+            method: None,
+            corner_vertex: self.vertices.corner_vertex(scene.normals.corner()),
+            centroids,
+            phong: &self.phong,
+            simd: self.simd.without_avx512(),
+            lit: &self.lit,
+            lit_back: &self.lit_back,
+            bands: options.height.div_ceil(BAND_ROWS) as usize,
+            rows: rows.start as i32..rows.end as i32,
+        }
     }
 }
