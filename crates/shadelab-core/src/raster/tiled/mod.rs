@@ -19,9 +19,10 @@
 //!    faces drawn, polygons) is split into the fan both rasterizers use.
 //!    Each triangle is copied, with its planes, into the bin of every band
 //!    it touches (for the three methods at once, a mesh triangle with its
-//!    first corner instead: the band solves its planes, see below). Flat shading lights the chunk's front polygons after its
-//!    walk, 8 at a time; a flat triangle holds its polygon's index into the
-//!    chunk's colours.
+//!    first corner instead: the band solves its planes, see below). Flat
+//!    shading lights the chunk's front polygons after its walk, 8 at a
+//!    time; a flat triangle holds its polygon's index into the chunk's
+//!    colours.
 //! 3. **Bands** (parallel): a band reads its chunks' bins in order (see
 //!    `band/`), looking up flat triangles' colours in their chunk's, then
 //!    writes its rows of the image.
@@ -64,10 +65,10 @@
 //!   those of three frames (`tests/methods.rs`). Their planes are 11 per
 //!   triangle, 132 bytes: a mesh triangle is binned with its first corner
 //!   instead, and each band it touches solves them from the corners with
-//!   setup's function and inputs (`Frame::planes_of`), which on small
-//!   triangles (one band, mostly) costs less than writing and reading
-//!   them, most of all in a frame whose bins' memory has gone cold. On meshes of 70k–100k
-//!   small triangles the three cost about half of three frames
+//!   setup's function and inputs (`Frame::planes_of`). On small triangles
+//!   (one band, mostly) that costs less than writing and reading them,
+//!   most of all in a frame whose bins' memory has gone cold. On meshes of
+//!   70k–100k small triangles the three cost about half of three frames
 //!   (WebAssembly, 480²), where setup is now the larger part.
 //! * **A part of the rows, for threads of their own.** The viewer's
 //!   WebAssembly has one thread per worker; two workers each draw half the
