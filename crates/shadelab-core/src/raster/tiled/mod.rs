@@ -422,7 +422,7 @@ impl TiledRasterizer {
         images: [&mut Image; 3],
     ) -> [RenderStats; 3] {
         let (stats, polygons) = self.geometry(vertices, scene, options, lighting, None, rows);
-        let frame = self.frame(scene, options, polygons.centroids(), rows);
+        let frame = self.frame(scene, options, None, polygons.centroids(), rows);
         let sources = (&frame, polygons.projected());
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
@@ -495,7 +495,6 @@ impl TiledRasterizer {
         method: Option<Shading>,
         rows: &std::ops::Range<u32>,
     ) -> (RenderStats, V::Polygons<'v>) {
-        let height = options.height;
         self.phong.update(lighting);
         let (vertex_table, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
         // Vertex lighting, like setup, runs the AVX2 build where AVX-512 is chosen.
@@ -510,7 +509,6 @@ impl TiledRasterizer {
         // independent: run together, neither waits for the other's last task.
         let (polygons, evaluations) = rayon::join(|| vertices.project(), light);
 
-        let bands = height.div_ceil(BAND_ROWS) as usize;
         let threads = rayon::current_num_threads().max(1);
         self.bands.resize_with(threads, Mutex::default);
         self.bands.truncate(threads);
@@ -523,37 +521,25 @@ impl TiledRasterizer {
         let chunk_count = (rayon::current_num_threads() * SETUP_CHUNKS_PER_THREAD).max(1);
         self.chunks.resize_with(chunk_count, Chunk::default);
         self.chunks.truncate(chunk_count);
-        let frame = Frame {
-            scene,
-            options,
-            method,
-            corner_vertex: self.vertices.corner_vertex(scene.normals.corner()),
-            centroids: polygons.centroids(),
-            phong: &self.phong,
-            simd: self.simd.without_avx512(),
-            lit: &self.lit,
-            lit_back: &self.lit_back,
-            bands,
-            rows: rows.start as i32..rows.end as i32,
-        };
+        // Setup fills the chunks while reading the rest of `self` (the
+        // frame's attribute sources): taken out meanwhile, no copy.
+        let mut chunks = std::mem::take(&mut self.chunks);
+        let frame = self.frame(scene, options, method, polygons.centroids(), rows);
         let count = polygons.count();
-        let polygons_walked = &polygons;
-        self.chunks
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(i, chunk)| {
-                let start = count * i / chunk_count;
-                let end = count * (i + 1) / chunk_count;
-                dispatch(
-                    frame.simd,
-                    SetupKernel {
-                        chunk,
-                        frame: &frame,
-                        polygons: polygons_walked,
-                        faces: start..end,
-                    },
-                );
-            });
+        chunks.par_iter_mut().enumerate().for_each(|(i, chunk)| {
+            let start = count * i / chunk_count;
+            let end = count * (i + 1) / chunk_count;
+            dispatch(
+                frame.simd,
+                SetupKernel {
+                    chunk,
+                    frame: &frame,
+                    polygons: &polygons,
+                    faces: start..end,
+                },
+            );
+        });
+        self.chunks = chunks;
 
         let mut stats = RenderStats {
             polygons: count as u64,
@@ -574,19 +560,20 @@ impl TiledRasterizer {
         (stats, polygons)
     }
 
-    /// What a band solving the three methods' planes reads of the frame
-    /// (as setup's [`Frame`], built in `geometry`).
+    /// What setup, and a band solving the three methods' planes, read of
+    /// the frame, for `method`'s attributes (`None`: the three methods').
     fn frame<'a>(
         &'a self,
         scene: &'a Scene,
         options: &'a RenderOptions,
+        method: Option<Shading>,
         centroids: &'a [glam::Vec3],
         rows: &std::ops::Range<u32>,
     ) -> Frame<'a> {
         Frame {
             scene,
             options,
-            method: None,
+            method,
             corner_vertex: self.vertices.corner_vertex(scene.normals.corner()),
             centroids,
             phong: &self.phong,
