@@ -94,7 +94,7 @@ use self::band::{band_rows, Band, Colors, Depths, Pass};
 
 use self::chunk::{Chunk, Frame, SetupKernel};
 pub(crate) use self::setup::BAND_ROWS;
-use self::setup::{plane_count, Plane, Triangle, PLANES};
+use self::setup::{plane_count, PLANES};
 use self::vertices::{light_vertices, VertexTable};
 
 use crate::color::Rgb8;
@@ -189,7 +189,24 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         let flat = S::ATTRS == 0 || all;
         for chunk in self.chunks {
             let bin = &chunk.bins[self.index];
-            let mut draw = |t: &Triangle, planes: &[Plane]| {
+            // The three methods at once: a mesh triangle's planes are
+            // solved here, from its corners (see `chunk.rs`, `Bin`). One
+            // loop, no closure: a closure left out of line would lose the
+            // SIMD level's target features.
+            let sources = match self.output {
+                Output::Methods(_, _, sources) if !bin.corners.is_empty() => Some(sources),
+                _ => None,
+            };
+            let mut stored = bin.planes.chunks_exact(stride);
+            for (k, t) in bin.triangles.iter().enumerate() {
+                let solved;
+                let planes = match sources {
+                    Some((frame, projected)) if bin.corners[k] != u32::MAX => {
+                        solved = frame.planes_of(t, bin.corners[k] as usize, projected);
+                        &solved[..stride]
+                    }
+                    _ => stored.next().expect("a stored triangle's planes"),
+                };
                 let color = if flat {
                     chunk.flat_colors[t.color as usize] as u32
                 } else {
@@ -207,26 +224,6 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                     y1,
                     pass,
                 );
-            };
-            if bin.corners.is_empty() {
-                for (t, planes) in bin.triangles.iter().zip(bin.planes.chunks_exact(stride)) {
-                    draw(t, planes);
-                }
-                continue;
-            }
-            // The three methods at once: a mesh triangle's planes are
-            // solved here, from its corners (see `chunk.rs`, `Bin`).
-            let Output::Methods(_, _, (frame, projected)) = self.output else {
-                unreachable!("corners are binned for the three methods at once")
-            };
-            let mut stored = bin.planes.chunks_exact(stride);
-            for (t, &corner) in bin.triangles.iter().zip(&bin.corners) {
-                if corner == u32::MAX {
-                    draw(t, stored.next().expect("a stored triangle's planes"));
-                } else {
-                    let planes = frame.planes_of(t, corner as usize, projected);
-                    draw(t, &planes[..stride]);
-                }
             }
         }
         self.band.flush(simd, self.shader, &lanes);
