@@ -6,32 +6,49 @@ Each round runs `BEFORE bench --json` and `AFTER bench --json` (the order
 alternating from round to round, so that the machine's load falls on both
 alike) with the models read from ../shared/models (or $SHADELAB_MODELS);
 then prints each row's median over the rounds, before and after, their
-ratio, and the geometric mean of the ratios. The raw times go to
-/tmp/ab.json.
+ratio, the same for the least frame of all rounds, in how many rounds
+AFTER's median was the lower, and the geometric means of both ratios. On a
+machine whose speed changes in phases of seconds (BENCHMARKS.md, "The same
+code on an AMD EPYC"), a change the medians and the minima disagree on is
+not measured. The raw times, with each frame's, go to /tmp/ab.json.
 """
 import json, os, subprocess, sys, statistics, math
 
 MODELS = os.environ.get('SHADELAB_MODELS') or os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'shared', 'models')
 A, B, rounds = sys.argv[1], sys.argv[2], int(sys.argv[3])
 extra = sys.argv[4:]
-res = {A: {}, B: {}}
+medians = {A: {}, B: {}}
+minima = {A: {}, B: {}}
+frames = {A: {}, B: {}}
 machine = None
 for r in range(rounds):
     for binary in ([A, B] if r % 2 == 0 else [B, A]):
         out = subprocess.run([binary, 'bench', '--json', '--models-dir', MODELS] + extra, capture_output=True, text=True, check=True).stdout
         data = json.loads(out)
         machine = data.get('machine', machine)
-        for row in data['rows'] if 'rows' in data else data['records']:
-            key = (row['model'], row['size'] if 'size' in row else f"{row['width']}x{row['height']}", row['shading'], row['rasterizer'], row['threads'])
-            res[binary].setdefault(key, []).append(row['median_ms'] if 'median_ms' in row else row['ms_median'])
+        for row in data['rows']:
+            key = (row['model'], f"{row['width']}x{row['height']}", row['shading'], row['rasterizer'], row['threads'])
+            medians[binary].setdefault(key, []).append(row['median_ms'])
+            minima[binary].setdefault(key, []).append(row['min_ms'])
+            frames[binary].setdefault(key, []).append(row.get('frame_ms', []))
         print(f'round {r} {binary} done', file=sys.stderr, flush=True)
-json.dump({'machine': machine, 'a': {str(k): v for k, v in res[A].items()}, 'b': {str(k): v for k, v in res[B].items()}}, open('/tmp/ab.json', 'w'))
-ratios = []
-print('| model | size | method | rasterizer | threads | before ms | after ms | after/before |')
-print('|---|---|---|---|---:|---:|---:|---:|')
-for key in sorted(res[A]):
-    a = statistics.median(res[A][key]); b = statistics.median(res[B][key])
-    ratios.append(b / a)
-    print(f'| {key[0]} | {key[1]} | {key[2]} | {key[3]} | {key[4]} | {a:.3f} | {b:.3f} | {b/a:.3f} |')
-g = math.exp(sum(map(math.log, ratios)) / len(ratios))
-print(f'\ngeometric mean after/before: {g:.3f} over {len(ratios)} rows; worst {max(ratios):.3f}; best {min(ratios):.3f}')
+json.dump({'machine': machine,
+           'a': {str(k): v for k, v in medians[A].items()}, 'b': {str(k): v for k, v in medians[B].items()},
+           'a_min': {str(k): v for k, v in minima[A].items()}, 'b_min': {str(k): v for k, v in minima[B].items()},
+           'a_frames': {str(k): v for k, v in frames[A].items()}, 'b_frames': {str(k): v for k, v in frames[B].items()}},
+          open('/tmp/ab.json', 'w'))
+by_median, by_min = [], []
+print('| model | size | method | rasterizer | threads | before ms | after ms | after/before | before min | after min | after/before, min | after lower |')
+print('|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|')
+for key in sorted(medians[A]):
+    a, b = statistics.median(medians[A][key]), statistics.median(medians[B][key])
+    a_min, b_min = min(minima[A][key]), min(minima[B][key])
+    lower = sum(y < x for x, y in zip(medians[A][key], medians[B][key]))
+    by_median.append(b / a)
+    by_min.append(b_min / a_min)
+    print(f'| {key[0]} | {key[1]} | {key[2]} | {key[3]} | {key[4]} | {a:.3f} | {b:.3f} | {b/a:.3f} '
+          f'| {a_min:.3f} | {b_min:.3f} | {b_min/a_min:.3f} | {lower} of {len(medians[A][key])} |')
+geomean = lambda r: math.exp(sum(map(math.log, r)) / len(r))
+print(f'\ngeometric mean after/before: {geomean(by_median):.3f} over {len(by_median)} rows '
+      f'(worst {max(by_median):.3f}, best {min(by_median):.3f}); '
+      f'of the minima: {geomean(by_min):.3f} (worst {max(by_min):.3f}, best {min(by_min):.3f})')

@@ -87,6 +87,23 @@ fn json_has_one_row_per_combination() {
         );
         assert!(row["frames"].as_u64().unwrap() >= 2);
         assert!(row["median_ms"].as_f64().unwrap() >= row["min_ms"].as_f64().unwrap());
+        // Each timed frame, in the order they ran: as many as `frames`,
+        // their least the row's minimum and their middle its median.
+        let mut times: Vec<f64> = (row["frame_ms"].as_array().unwrap().iter())
+            .map(|t| t.as_f64().unwrap())
+            .collect();
+        assert_eq!(times.len() as u64, row["frames"].as_u64().unwrap(), "{row}");
+        times.sort_by(f64::total_cmp);
+        let n = times.len();
+        let middle = (times[(n - 1) / 2] + times[n / 2]) / 2.0;
+        assert!(
+            (times[0] - row["min_ms"].as_f64().unwrap()).abs() < 1e-3,
+            "{row}"
+        );
+        assert!(
+            (middle - row["median_ms"].as_f64().unwrap()).abs() < 1e-3,
+            "{row}"
+        );
         assert!(row["covered_pixels"].as_u64().unwrap() > 0, "{row}");
     }
     // The full-screen quad covers every pixel; both rasterizers agree on it.

@@ -75,7 +75,8 @@ pub struct BenchArgs {
     /// Where the bunny and dragon meshes are; default ../shared/models.
     #[arg(long)]
     pub models_dir: Option<PathBuf>,
-    /// Print JSON (one object: machine, then one record per row) instead of a table.
+    /// Print JSON (one object: machine, then one record per row, with each
+    /// timed frame's milliseconds in the order they ran) instead of a table.
     #[arg(long)]
     pub json: bool,
     /// Write the scenes' geometry and images for another renderer to DIR, and time nothing.
@@ -152,6 +153,10 @@ struct Row {
     frames: usize,
     median_ms: f64,
     min_ms: f64,
+    /// Each timed frame's milliseconds, in the order they ran: a machine
+    /// whose speed changes in phases (BENCHMARKS.md, "The same code on an
+    /// AMD EPYC") shows it here, where the median hides it.
+    frame_ms: Vec<f64>,
     covered_pixels: u64,
     fragments: u64,
 }
@@ -333,6 +338,7 @@ fn time_row(
         stats = pool.install(|| renderer.render_into(scene, options, &mut image))?;
         times.push(t.elapsed().as_secs_f64() * 1e3);
     }
+    let frame_ms = times.clone();
     times.sort_by(f64::total_cmp);
     let n = times.len();
     let median = if n % 2 == 1 {
@@ -351,6 +357,7 @@ fn time_row(
         frames: n,
         median_ms: median,
         min_ms: times[0],
+        frame_ms,
         covered_pixels: stats.covered_pixels,
         fragments: stats.fragments_shaded,
     })

@@ -79,6 +79,12 @@ pub(super) fn quote(s: &str) -> String {
     out
 }
 
+/// Milliseconds as a JSON array's items, to the microsecond.
+fn frame_ms(times: &[f64]) -> String {
+    let items: Vec<String> = times.iter().map(|t| format!("{t:.4}")).collect();
+    items.join(",")
+}
+
 pub(super) fn json(machine: &Machine, args: &BenchArgs, rows: &[Row]) -> String {
     let mut s = String::new();
     let _ = write!(
@@ -98,7 +104,7 @@ pub(super) fn json(machine: &Machine, args: &BenchArgs, rows: &[Row]) -> String 
         }
         let _ = write!(
             s,
-            "{{\"model\":{},\"triangles\":{},\"width\":{},\"height\":{},\"shading\":{},\"rasterizer\":{},\"threads\":{},\"frames\":{},\"median_ms\":{:.4},\"min_ms\":{:.4},\"covered_pixels\":{},\"fragments\":{},\"mpixels_per_s\":{:.2},\"mtriangles_per_s\":{:.3},\"cycles_per_pixel\":{:.2}}}",
+            "{{\"model\":{},\"triangles\":{},\"width\":{},\"height\":{},\"shading\":{},\"rasterizer\":{},\"threads\":{},\"frames\":{},\"median_ms\":{:.4},\"min_ms\":{:.4},\"covered_pixels\":{},\"fragments\":{},\"mpixels_per_s\":{:.2},\"mtriangles_per_s\":{:.3},\"cycles_per_pixel\":{:.2},\"frame_ms\":[{}]}}",
             quote(r.model),
             r.triangles,
             r.width,
@@ -113,7 +119,8 @@ pub(super) fn json(machine: &Machine, args: &BenchArgs, rows: &[Row]) -> String 
             r.fragments,
             r.mpixels_per_s(),
             r.mtriangles_per_s(),
-            r.cycles_per_pixel(machine.clock_mhz)
+            r.cycles_per_pixel(machine.clock_mhz),
+            frame_ms(&r.frame_ms)
         );
     }
     s.push_str("]}");
