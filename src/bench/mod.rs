@@ -150,7 +150,6 @@ struct Row {
     shading: Shading,
     rasterizer: Rasterizer,
     threads: u32,
-    frames: usize,
     median_ms: f64,
     min_ms: f64,
     /// Each timed frame's milliseconds, in the order they ran: a machine
@@ -354,7 +353,6 @@ fn time_row(
         shading: options.shading,
         rasterizer: options.rasterizer,
         threads: 0,
-        frames: n,
         median_ms: median,
         min_ms: times[0],
         frame_ms,
@@ -396,7 +394,7 @@ impl Row {
             self.mpixels_per_s(),
             self.mtriangles_per_s(),
             self.cycles_per_pixel(mhz),
-            self.frames
+            self.frame_ms.len()
         )
     }
 }

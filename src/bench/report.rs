@@ -112,7 +112,7 @@ pub(super) fn json(machine: &Machine, args: &BenchArgs, rows: &[Row]) -> String 
             quote(r.shading.name()),
             quote(r.rasterizer.name()),
             r.threads,
-            r.frames,
+            r.frame_ms.len(),
             r.median_ms,
             r.min_ms,
             r.covered_pixels,
