@@ -27,6 +27,11 @@ pub(crate) const MAX_ATTRS: usize = 6;
 pub(crate) trait Shader: Sync {
     /// How many attributes the method interpolates.
     const ATTRS: usize;
+    /// How many of the first attributes are used only after normalising
+    /// (Phong's normal, `unit_normal`): in perspective they are left
+    /// divided by `w`, a positive factor the normalisation removes, which
+    /// saves three multiplications per 8 fragments.
+    const SCALE_FREE: usize = 0;
     /// The method's constants, in lanes.
     type Lanes<S: Simd>: Copy;
     /// Splats the constants, once per band.
@@ -163,6 +168,7 @@ impl PhongShader {
 
 impl Shader for PhongShader {
     const ATTRS: usize = 6;
+    const SCALE_FREE: usize = 3;
     const DEFERRED: bool = true;
     type Lanes<S: Simd> = ();
     #[inline(always)]
@@ -244,6 +250,7 @@ impl OnePointLight {
 
 impl Shader for OnePointLight {
     const ATTRS: usize = 6;
+    const SCALE_FREE: usize = 3;
     const DEFERRED: bool = true;
     type Lanes<S: Simd> = OneLightLanes<S::F16>;
 
@@ -293,6 +300,7 @@ pub(crate) struct AllMethods<'a, P>(pub &'a P);
 
 impl<P: Shader> Shader for AllMethods<'_, P> {
     const ATTRS: usize = P::ATTRS;
+    const SCALE_FREE: usize = P::SCALE_FREE;
     const DEFERRED: bool = P::DEFERRED;
     const ALL_METHODS: bool = true;
     type Lanes<S: Simd> = P::Lanes<S>;

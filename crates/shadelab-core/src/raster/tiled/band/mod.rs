@@ -531,6 +531,84 @@ mod tests {
         }
     }
 
+    /// Perspective interpolation with Phong's normal scale-free
+    /// ([`crate::shade::Shader::SCALE_FREE`]): the normal is its plane's
+    /// value (`n/w`), whose direction is that of `n/w · w` within f32
+    /// rounding, and the position is `p/w · w`.
+    struct ScaleFree;
+
+    impl Kernel for ScaleFree {
+        type Output = ();
+        fn run<S: Simd>(self, s: S) {
+            use crate::raster::Interpolation;
+            use crate::simd::Vf;
+            // Planes 0 (depth), 1 (1/w), then n/w and p/w: gradients and
+            // values at the row's first column, 1/w from 1/2 down to 1/40.
+            let dx = [0.0, -0.0006, 0.002, -0.001, 0.0007, 0.01, -0.02, 0.003];
+            let row = [0.5, 0.5, 0.3, -0.2, 0.4, 1.5, 0.25, -3.0];
+            let x = Vf::load(s, &std::array::from_fn(|i| (i * 101) as f32));
+            let attrs = walk::interpolate_planes(
+                Interpolation::Perspective,
+                6,
+                3,
+                x,
+                |j| Vf::splat(s, dx[j]),
+                |j| Vf::splat(s, row[j]),
+            );
+            let lanes = |v: Vf<S>| {
+                let mut out = [0f32; 8];
+                v.store(&mut out);
+                out
+            };
+            let got = attrs.map(lanes);
+            for i in 0..8 {
+                let x = (i * 101) as f32;
+                let plane = |j: usize| x.mul_add(dx[j], row[j]);
+                let inv_w = plane(1);
+                assert!(inv_w > 0.02, "lane {i}: 1/w = {inv_w}");
+                let w = f64::from(inv_w).recip();
+                // The normal: the plane's value (a backend's multiply-add
+                // may round twice), not multiplied by w.
+                for k in 0..3 {
+                    let want = plane(2 + k);
+                    let error = (got[k][i] - want).abs() / want.abs();
+                    assert!(
+                        error < 1e-6,
+                        "lane {i}, normal {k}: {} for {want}",
+                        got[k][i]
+                    );
+                }
+                // Its direction against n = (n/w)·w in f64.
+                let n: [f64; 3] = std::array::from_fn(|k| f64::from(plane(2 + k)) * w);
+                let length = n.iter().map(|c| c * c).sum::<f64>().sqrt();
+                let got_length = (0..3)
+                    .map(|k| f64::from(got[k][i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                for k in 0..3 {
+                    let error = (f64::from(got[k][i]) / got_length - n[k] / length).abs();
+                    assert!(
+                        error < 1e-6,
+                        "lane {i}, normal {k}: direction off by {error}"
+                    );
+                }
+                // The position: (p/w)·w with w from the backend's reciprocal.
+                for k in 3..6 {
+                    let want = f64::from(plane(2 + k)) * w;
+                    let error = (f64::from(got[k][i]) - want).abs() / want.abs();
+                    assert!(error < 1e-5, "lane {i}, position {k}: off by {error}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn phong_normals_interpolate_without_w() {
+        for level in SimdLevel::supported() {
+            dispatch(level, ScaleFree);
+        }
+    }
+
     /// Every pixel and the count come out right whatever the output's
     /// alignment (each offset of 1 pixel moves it by 3 bytes, so 32
     /// offsets give every address modulo 32), with and without streaming

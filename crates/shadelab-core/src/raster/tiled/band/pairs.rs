@@ -81,6 +81,7 @@ impl<S: Simd> Pairs<S> {
         interpolate_planes(
             f.interpolation,
             Sh::ATTRS,
+            Sh::SCALE_FREE,
             self.column,
             |j| dx[j],
             |j| at_row[j],

@@ -293,6 +293,7 @@ impl Band {
         let colors = interpolate_planes(
             f.interpolation,
             3,
+            0,
             x,
             |j| Vf::splat(s, plane(j).dx),
             |j| Vf::splat(s, plane(j).at_origin + plane(j).dy * dy),
@@ -474,7 +475,8 @@ pub(super) fn interpolate<S: Simd, Sh: Shader>(
     x: Vf<S>,
     at_row: impl Fn(usize) -> Vf<S>,
 ) -> [Vf<S>; MAX_ATTRS] {
-    let mut attrs = interpolate_planes(f.interpolation, Sh::ATTRS, x, |k| f.dx[k], at_row);
+    let (count, scale_free) = (Sh::ATTRS, Sh::SCALE_FREE);
+    let mut attrs = interpolate_planes(f.interpolation, count, scale_free, x, |k| f.dx[k], at_row);
     if Sh::DEFERRED && f.t.flip != 1.0 {
         for k in 0..3 {
             attrs[k] = attrs[k] * f.t.flip;
@@ -486,27 +488,25 @@ pub(super) fn interpolate<S: Simd, Sh: Shader>(
 /// Attributes `0..count` at columns `x`, from each plane's gradient
 /// `dx(j)` and its value at the first column of the row `at_row(j)`:
 /// plane 1 is 1/w, attribute `k` is plane `2 + k` (divided by w in
-/// perspective mode, so multiplied back by the interpolated w).
+/// perspective mode, so multiplied back by the interpolated w, except the
+/// first `scale_free`, see [`Shader::SCALE_FREE`]).
 #[inline(always)]
 pub(super) fn interpolate_planes<L: Lanes>(
     interpolation: Interpolation,
     count: usize,
+    scale_free: usize,
     x: L,
     dx: impl Fn(usize) -> L,
     at_row: impl Fn(usize) -> L,
 ) -> [L; MAX_ATTRS] {
     let mut attrs = [x.splat_like(0.0); MAX_ATTRS];
-    match interpolation {
-        Interpolation::Perspective if count > 0 => {
-            let w = x.mul_add(dx(1), at_row(1)).recip();
-            for k in 0..count {
-                attrs[k] = x.mul_add(dx(2 + k), at_row(2 + k)) * w;
-            }
-        }
-        _ => {
-            for k in 0..count {
-                attrs[k] = x.mul_add(dx(2 + k), at_row(2 + k));
-            }
+    for k in 0..count {
+        attrs[k] = x.mul_add(dx(2 + k), at_row(2 + k));
+    }
+    if interpolation == Interpolation::Perspective && count > scale_free {
+        let w = x.mul_add(dx(1), at_row(1)).recip();
+        for k in scale_free..count {
+            attrs[k] = attrs[k] * w;
         }
     }
     attrs
