@@ -3,7 +3,7 @@
 use std::arch::x86_64::*;
 use std::marker::PhantomData;
 
-use super::{Pair, Simd, Vf};
+use super::{Pair, PlaneSolve, Simd, SolvedPlane, Vf, SOLVE_LANES};
 
 /// The AVX2 backend; a value proves the CPU has AVX2 and FMA (and
 /// POPCNT, BMI1 and BMI2, which every AVX2 processor has), and whatever
@@ -76,6 +76,48 @@ impl<W: Width> Simd for Avx2<W> {
     /// eight were faster on the quad but slower on the meshes, so the
     /// queue held four of 8).
     const LIT_GROUPS: usize = super::MAX_LIT_GROUPS;
+
+    /// Four planes per vector of `f64`, with [`super::solve_planes`]'s
+    /// operations (multiplies and adds, not fused) in its order, and the
+    /// same rounding to `f32` (to nearest): the same bits.
+    #[inline(always)]
+    fn solve_planes(self, p: &PlaneSolve, count: usize) -> [SolvedPlane; SOLVE_LANES] {
+        let mut out = [[0.0; 3]; SOLVE_LANES];
+        // SAFETY: see the impl; each load reads 4 lanes of an array of
+        // `SOLVE_LANES` from a multiple of 4 below it (the assert), each
+        // store writes a `[f32; 4]`.
+        unsafe {
+            let splat = _mm256_set1_pd;
+            let (gx1, gx2, gy1, gy2) = (
+                splat(p.gx[0]),
+                splat(p.gx[1]),
+                splat(p.gy[0]),
+                splat(p.gy[1]),
+            );
+            let (ox, oy) = (splat(p.origin[0]), splat(p.origin[1]));
+            for base in (0..count.min(SOLVE_LANES)).step_by(4) {
+                assert!(base + 4 <= SOLVE_LANES);
+                let q0 = _mm256_loadu_pd(p.q[0][base..].as_ptr());
+                let q1 = _mm256_loadu_pd(p.q[1][base..].as_ptr());
+                let q2 = _mm256_loadu_pd(p.q[2][base..].as_ptr());
+                let (d1, d2) = (_mm256_sub_pd(q1, q0), _mm256_sub_pd(q2, q0));
+                let dx = _mm256_add_pd(_mm256_mul_pd(d1, gx1), _mm256_mul_pd(d2, gx2));
+                let dy = _mm256_add_pd(_mm256_mul_pd(d1, gy1), _mm256_mul_pd(d2, gy2));
+                let at = _mm256_add_pd(
+                    _mm256_add_pd(q0, _mm256_mul_pd(dx, ox)),
+                    _mm256_mul_pd(dy, oy),
+                );
+                let mut lanes = [[0f32; 4]; 3];
+                _mm_storeu_ps(lanes[0].as_mut_ptr(), _mm256_cvtpd_ps(at));
+                _mm_storeu_ps(lanes[1].as_mut_ptr(), _mm256_cvtpd_ps(dx));
+                _mm_storeu_ps(lanes[2].as_mut_ptr(), _mm256_cvtpd_ps(dy));
+                for i in 0..4 {
+                    out[base + i] = [lanes[0][i], lanes[1][i], lanes[2][i]];
+                }
+            }
+        }
+        out
+    }
 
     #[inline(always)]
     fn f16_load(self, src: &[f32; 16]) -> W::F16 {

@@ -46,6 +46,7 @@
 mod avx2;
 #[cfg(target_arch = "x86_64")]
 mod avx512;
+mod planes;
 mod portable;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 mod wasm128;
@@ -53,6 +54,7 @@ mod wide;
 
 use std::ops::{Add, BitAnd, BitOr, Mul, Sub};
 
+pub(crate) use self::planes::{solve_planes, PlaneSolve, SolvedPlane, SOLVE_LANES};
 pub(crate) use self::portable::Portable;
 pub(crate) use self::wide::{Lanes, Pair};
 
@@ -324,6 +326,14 @@ pub(crate) trait Simd: Copy + Send + Sync {
     /// backend's lanes are scalar code that four groups would unroll into
     /// functions too large to compile in reasonable time.
     const LIT_GROUPS: usize = 1;
+
+    /// The first `count` planes of a triangle's setup (`planes.rs`), bit
+    /// for bit those of [`solve_planes`], which this is unless the backend
+    /// has vectors of `f64`. The entries past `count` are unspecified.
+    #[inline(always)]
+    fn solve_planes(self, p: &PlaneSolve, count: usize) -> [SolvedPlane; SOLVE_LANES] {
+        solve_planes(p, count)
+    }
 }
 
 /// The most groups of 16 any backend lights together ([`Simd::LIT_GROUPS`]):

@@ -197,3 +197,56 @@ fn scatter_checks_the_largest_index() {
 fn scatter_refuses_negative_indices() {
     scatter(&[0; 8], &[0, 1, 2, -1, 4, 5, 6, 7], &mut [0; 12]);
 }
+
+struct Solve(PlaneSolve, usize);
+
+impl Kernel for Solve {
+    type Output = [SolvedPlane; SOLVE_LANES];
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> [SolvedPlane; SOLVE_LANES] {
+        s.solve_planes(&self.0, self.1)
+    }
+}
+
+#[test]
+fn every_level_solves_planes_bit_for_bit() {
+    // Values of every magnitude and sign, some of them such that products
+    // round (or overflow to infinity) and sums cancel, and every count.
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        let mantissa = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+        let exponent = (seed % 80) as i32 - 40;
+        mantissa * 2f64.powi(exponent)
+    };
+    for round in 0..2000 {
+        let mut p = PlaneSolve {
+            q: std::array::from_fn(|_| std::array::from_fn(|_| next())),
+            gx: [next(), next()],
+            gy: [next(), next()],
+            origin: [next(), next()],
+        };
+        if round % 7 == 0 {
+            // Nearly equal corners: the differences cancel.
+            p.q[1] = p.q[0].map(|v| v * (1.0 + 1e-12));
+        }
+        if round % 11 == 0 {
+            p.gx[0] = 1e300;
+        }
+        let count = round % (SOLVE_LANES + 1);
+        let expected = solve_planes(&p, count);
+        for level in SimdLevel::supported() {
+            let got = dispatch(level, Solve(p, count));
+            for k in 0..count {
+                let bits = |v: [f32; 3]| v.map(f32::to_bits);
+                assert_eq!(
+                    bits(got[k]),
+                    bits(expected[k]),
+                    "{level:?}, plane {k} of {count}"
+                );
+            }
+        }
+    }
+}

@@ -117,8 +117,9 @@ impl Frame<'_> {
     /// first corner is `corner`, from the window positions `projected`: as
     /// `Setup::triangle` would have solved them (the same inputs).
     #[inline(always)]
-    pub(super) fn planes_of(
+    pub(super) fn planes_of<S: Simd>(
         &self,
+        s: S,
         t: &Triangle,
         corner: usize,
         projected: &[Projected],
@@ -129,7 +130,7 @@ impl Frame<'_> {
                 .vertex(self.front_attrs::<ALL_ATTRS>(corner + k))
         };
         let v: [ScreenVertex<ALL_ATTRS>; 3] = [vertex(0), vertex(1), vertex(2)];
-        t.planes(&v, ALL_ATTRS, self.options.interpolation)
+        t.planes(s, &v, ALL_ATTRS, self.options.interpolation)
     }
 
     /// Whether flat shading's colours are set up (in `Triangle::color`).
@@ -205,8 +206,10 @@ impl Frame<'_> {
 }
 
 /// A chunk's end of polygon assembly, for the method with `A` attributes
-/// (the general path carries `ALL_ATTRS`, of which the method's are set).
-struct Setup<'a, 'f, const A: usize> {
+/// (the general path carries `ALL_ATTRS`, of which the method's are set),
+/// compiled for the SIMD level `S`.
+struct Setup<'a, 'f, S, const A: usize> {
+    simd: S,
     frame: &'a Frame<'f>,
     bins: &'a mut [Bin],
     flat_surfaces: &'a mut Vec<[f32; 6]>,
@@ -214,7 +217,7 @@ struct Setup<'a, 'f, const A: usize> {
     flat_evaluations: u64,
 }
 
-impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
+impl<S: Simd, const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, S, A> {
     #[inline(always)]
     fn corner(&mut self, corner: usize, _: u32, back: bool) -> [f32; ALL_ATTRS] {
         self.frame.corner_attrs(corner, back)
@@ -267,7 +270,7 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
         }
         let vertex = |k: usize| p[k].vertex(frame.front_attrs::<A>(first_corner + k));
         let v: [ScreenVertex<A>; 3] = [vertex(0), vertex(1), vertex(2)];
-        let planes = t.planes(&v, A, options.interpolation);
+        let planes = t.planes(self.simd, &v, A, options.interpolation);
         self.bin(&t, &planes[..plane_count(A)], u32::MAX);
     }
 
@@ -304,7 +307,7 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
             if t.covers_no_centre() || !frame.draws(&t) {
                 continue;
             }
-            let planes = t.planes(&triangle, attrs, options.interpolation);
+            let planes = t.planes(self.simd, &triangle, attrs, options.interpolation);
             t.color = color;
             t.flip = if back { -1.0 } else { 1.0 };
             t.once = once;
@@ -313,7 +316,7 @@ impl<const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, A> {
     }
 }
 
-impl<const A: usize> Setup<'_, '_, A> {
+impl<S: Simd, const A: usize> Setup<'_, '_, S, A> {
     /// Queues a polygon for flat lighting; returns its index.
     fn flat_surface(&mut self, face: usize, normal: Vec3, back: bool) -> u32 {
         self.flat_evaluations += u64::from(self.frame.counts_flat(None));
@@ -350,8 +353,9 @@ impl Chunk {
     /// `A` attributes, compiled for the SIMD level (for the compiler's own
     /// vectorization: the arithmetic is the same, so are the results).
     #[inline(always)]
-    fn setup<const A: usize, P: PolygonSource>(
+    fn setup<S: Simd, const A: usize, P: PolygonSource>(
         &mut self,
+        simd: S,
         frame: &Frame<'_>,
         polygons: &P,
         faces: std::ops::Range<usize>,
@@ -363,7 +367,8 @@ impl Chunk {
         }
         self.stats = RenderStats::default();
         self.flat_surfaces.clear();
-        let mut sink = Setup::<A> {
+        let mut sink = Setup::<S, A> {
+            simd,
             frame,
             bins: &mut self.bins,
             flat_surfaces: &mut self.flat_surfaces,
@@ -404,14 +409,14 @@ impl<P: PolygonSource> Kernel for SetupKernel<'_, '_, P> {
     type Output = ();
 
     #[inline(always)]
-    fn run<S: Simd>(self, _: S) {
+    fn run<S: Simd>(self, s: S) {
         let (chunk, frame, faces) = (self.chunk, self.frame, self.faces);
         let polygons = self.polygons;
         match frame.method {
-            Some(Shading::Flat) => chunk.setup::<0, P>(frame, polygons, faces),
-            Some(Shading::Gouraud) => chunk.setup::<3, P>(frame, polygons, faces),
-            Some(Shading::Phong) => chunk.setup::<6, P>(frame, polygons, faces),
-            None => chunk.setup::<ALL_ATTRS, P>(frame, polygons, faces),
+            Some(Shading::Flat) => chunk.setup::<S, 0, P>(s, frame, polygons, faces),
+            Some(Shading::Gouraud) => chunk.setup::<S, 3, P>(s, frame, polygons, faces),
+            Some(Shading::Phong) => chunk.setup::<S, 6, P>(s, frame, polygons, faces),
+            None => chunk.setup::<S, ALL_ATTRS, P>(s, frame, polygons, faces),
         }
     }
 }

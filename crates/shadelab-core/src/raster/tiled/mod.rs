@@ -202,7 +202,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                 let solved;
                 let planes = match sources {
                     Some((frame, projected)) if bin.corners[k] != u32::MAX => {
-                        solved = frame.planes_of(t, bin.corners[k] as usize, projected);
+                        solved = frame.planes_of(simd, t, bin.corners[k] as usize, projected);
                         &solved[..stride]
                     }
                     _ => stored.next().expect("a stored triangle's planes"),

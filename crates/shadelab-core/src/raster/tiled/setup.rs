@@ -18,6 +18,7 @@
 //!   and f32 keeps its precision whatever the triangle's position.
 
 use crate::raster::{Interpolation, ScreenVertex, SUBPIXEL_BITS, SUBPIXEL_HALF, SUBPIXEL_ONE};
+use crate::simd::{PlaneSolve, Simd, SOLVE_LANES};
 
 /// The attributes of a triangle set up for the three methods at once
 /// (`TiledRasterizer::render_methods`): Phong's six (normal, position),
@@ -213,17 +214,19 @@ impl Triangle {
 
     /// The planes of depth and, when `attrs > 0`, of 1/w and the first
     /// `attrs` attributes (divided by w in perspective mode): the first
-    /// [`plane_count`]`(attrs)` entries.
+    /// [`plane_count`]`(attrs)` entries. The arithmetic per plane is the
+    /// SIMD backend's ([`Simd::solve_planes`], the same bits on every one).
     #[inline(always)]
-    pub fn planes<const N: usize>(
+    pub fn planes<S: Simd, const N: usize>(
         &self,
+        s: S,
         v: &[ScreenVertex<N>; 3],
         attrs: usize,
         interpolation: Interpolation,
     ) -> [Plane; PLANES] {
         // The values at the three corners, one array per corner so that
-        // the per-plane arithmetic below is a straight loop over planes.
-        let mut q = [[0f64; PLANES]; 3];
+        // the per-plane arithmetic is the same operations on each lane.
+        let mut q = [[0f64; SOLVE_LANES]; 3];
         for i in 0..3 {
             let inv_w = f64::from(v[i].inv_w);
             let scale = match interpolation {
@@ -247,27 +250,21 @@ impl Triangle {
             (v[2].y - v[0].y) as f64 * unit,
         );
         let inv_det = 1.0 / (e1x * e2y - e2x * e1y);
-        // Pixel centre of the first pixel, relative to vertex 0.
-        let (ox, oy) = (
-            f64::from(self.x0) + 0.5 - px0,
-            f64::from(self.y0) + 0.5 - py0,
-        );
-        let (gx1, gx2) = (e2y * inv_det, -e1y * inv_det);
-        let (gy1, gy2) = (-e2x * inv_det, e1x * inv_det);
-        let mut planes = [Plane::default(); PLANES];
+        let solve = PlaneSolve {
+            q,
+            gx: [e2y * inv_det, -e1y * inv_det],
+            gy: [-e2x * inv_det, e1x * inv_det],
+            // Pixel centre of the first pixel, relative to vertex 0.
+            origin: [
+                f64::from(self.x0) + 0.5 - px0,
+                f64::from(self.y0) + 0.5 - py0,
+            ],
+        };
         let count = plane_count(attrs);
-        for k in 0..PLANES {
-            if k == count {
-                break;
-            }
-            let (d1, d2) = (q[1][k] - q[0][k], q[2][k] - q[0][k]);
-            let dx = d1 * gx1 + d2 * gx2;
-            let dy = d1 * gy1 + d2 * gy2;
-            planes[k] = Plane {
-                at_origin: (q[0][k] + dx * ox + dy * oy) as f32,
-                dx: dx as f32,
-                dy: dy as f32,
-            };
+        let solved = s.solve_planes(&solve, count);
+        let mut planes = [Plane::default(); PLANES];
+        for (plane, &[at_origin, dx, dy]) in planes.iter_mut().zip(&solved).take(count) {
+            *plane = Plane { at_origin, dx, dy };
         }
         planes
     }
@@ -305,7 +302,7 @@ mod tests {
     fn planes_reproduce_vertex_values() {
         let tri = [v(300, 200), v(900, 2000), v(2500, 700)];
         let t = Triangle::edges(tri.map(|v| v.x), tri.map(|v| v.y), 64, 64).unwrap();
-        let planes = t.planes(&tri, 1, Interpolation::Screen);
+        let planes = t.planes(crate::simd::Portable, &tri, 1, Interpolation::Screen);
         assert_eq!(plane_count(1), 3);
         // attr = x + 2y in snapped units = 256·(X + 2Y) in pixels.
         let p = planes[2];
