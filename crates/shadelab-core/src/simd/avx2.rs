@@ -81,21 +81,17 @@ impl<W: Width> Simd for Avx2<W> {
     /// operations (multiplies and adds, not fused) in its order, and the
     /// same rounding to `f32` (to nearest): the same bits.
     #[inline(always)]
-    fn solve_planes(self, p: &PlaneSolve, count: usize) -> [SolvedPlane; SOLVE_LANES] {
-        let mut out = [[0.0; 3]; SOLVE_LANES];
+    fn solve_planes(self, p: &PlaneSolve, out: &mut [SolvedPlane]) {
         // SAFETY: see the impl; each load reads 4 lanes of an array of
         // `SOLVE_LANES` from a multiple of 4 below it (the assert), each
         // store writes a `[f32; 4]`.
         unsafe {
             let splat = _mm256_set1_pd;
-            let (gx1, gx2, gy1, gy2) = (
-                splat(p.gx[0]),
-                splat(p.gx[1]),
-                splat(p.gy[0]),
-                splat(p.gy[1]),
-            );
+            let (gx1, gx2) = (splat(p.gx[0]), splat(p.gx[1]));
+            let (gy1, gy2) = (splat(p.gy[0]), splat(p.gy[1]));
             let (ox, oy) = (splat(p.origin[0]), splat(p.origin[1]));
-            for base in (0..count.min(SOLVE_LANES)).step_by(4) {
+            let count = out.len().min(SOLVE_LANES);
+            for base in (0..count).step_by(4) {
                 assert!(base + 4 <= SOLVE_LANES);
                 let q0 = _mm256_loadu_pd(p.q[0][base..].as_ptr());
                 let q1 = _mm256_loadu_pd(p.q[1][base..].as_ptr());
@@ -111,12 +107,11 @@ impl<W: Width> Simd for Avx2<W> {
                 _mm_storeu_ps(lanes[0].as_mut_ptr(), _mm256_cvtpd_ps(at));
                 _mm_storeu_ps(lanes[1].as_mut_ptr(), _mm256_cvtpd_ps(dx));
                 _mm_storeu_ps(lanes[2].as_mut_ptr(), _mm256_cvtpd_ps(dy));
-                for i in 0..4 {
-                    out[base + i] = [lanes[0][i], lanes[1][i], lanes[2][i]];
+                for (i, out) in out[base..count].iter_mut().take(4).enumerate() {
+                    *out = [lanes[0][i], lanes[1][i], lanes[2][i]];
                 }
             }
         }
-        out
     }
 
     #[inline(always)]

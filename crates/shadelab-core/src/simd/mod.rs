@@ -327,12 +327,13 @@ pub(crate) trait Simd: Copy + Send + Sync {
     /// functions too large to compile in reasonable time.
     const LIT_GROUPS: usize = 1;
 
-    /// The first `count` planes of a triangle's setup (`planes.rs`), bit
-    /// for bit those of [`solve_planes`], which this is unless the backend
-    /// has vectors of `f64`. The entries past `count` are unspecified.
+    /// The first `out.len()` planes (at most [`SOLVE_LANES`]) of a
+    /// triangle's setup into `out` (`planes.rs`), bit for bit those of
+    /// [`solve_planes`], which this is unless the backend has vectors of
+    /// `f64`.
     #[inline(always)]
-    fn solve_planes(self, p: &PlaneSolve, count: usize) -> [SolvedPlane; SOLVE_LANES] {
-        solve_planes(p, count)
+    fn solve_planes(self, p: &PlaneSolve, out: &mut [SolvedPlane]) {
+        solve_planes(p, out);
     }
 }
 

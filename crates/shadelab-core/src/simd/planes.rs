@@ -28,23 +28,22 @@ pub(crate) struct PlaneSolve {
     pub origin: [f64; 2],
 }
 
-/// Plane `k`'s value at the first pixel and its steps in x and y, as `f32`.
+/// A plane's value at the first pixel and its steps in x and y, as `f32`
+/// (the layout of the rasterizer's `Plane`).
 pub(crate) type SolvedPlane = [f32; 3];
 
-/// The first `count` planes of `p`, one at a time: the specification every
-/// backend's [`super::Simd::solve_planes`] matches bit for bit. For each
-/// plane, with `d1 = q1 − q0` and `d2 = q2 − q0`:
+/// The first `out.len()` planes of `p`, one at a time, into `out`: the
+/// specification every backend's [`super::Simd::solve_planes`] matches bit
+/// for bit. For each plane, with `d1 = q1 − q0` and `d2 = q2 − q0`:
 /// `dx = d1·gx1 + d2·gx2`, `dy = d1·gy1 + d2·gy2` and
 /// `at = (q0 + dx·ox) + dy·oy`, each rounded to `f32` at the end.
 #[inline(always)]
-pub(crate) fn solve_planes(p: &PlaneSolve, count: usize) -> [SolvedPlane; SOLVE_LANES] {
-    let mut out = [[0.0; 3]; SOLVE_LANES];
+pub(crate) fn solve_planes(p: &PlaneSolve, out: &mut [SolvedPlane]) {
     let ([gx1, gx2], [gy1, gy2], [ox, oy]) = (p.gx, p.gy, p.origin);
-    for (k, out) in out.iter_mut().enumerate().take(count) {
+    for (k, out) in out.iter_mut().enumerate().take(SOLVE_LANES) {
         let (d1, d2) = (p.q[1][k] - p.q[0][k], p.q[2][k] - p.q[0][k]);
         let dx = d1 * gx1 + d2 * gx2;
         let dy = d1 * gy1 + d2 * gy2;
         *out = [(p.q[0][k] + dx * ox + dy * oy) as f32, dx as f32, dy as f32];
     }
-    out
 }

@@ -38,7 +38,11 @@ pub(crate) const BAND_ROWS: u32 = 16;
 
 /// An affine function of the pixel position: `at_origin + dx·(x − x0) + dy·(y − y0)`
 /// for pixel (x, y) and the triangle's first pixel (x0, y0).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+///
+/// Laid out as the [`crate::simd::SolvedPlane`] that setup's arithmetic
+/// writes (`Simd::solve_planes`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
 pub(crate) struct Plane {
     pub at_origin: f32,
     pub dx: f32,
@@ -260,12 +264,9 @@ impl Triangle {
                 f64::from(self.y0) + 0.5 - py0,
             ],
         };
-        let count = plane_count(attrs);
-        let solved = s.solve_planes(&solve, count);
         let mut planes = [Plane::default(); PLANES];
-        for (plane, &[at_origin, dx, dy]) in planes.iter_mut().zip(&solved).take(count) {
-            *plane = Plane { at_origin, dx, dy };
-        }
+        let count = plane_count(attrs).min(PLANES);
+        s.solve_planes(&solve, bytemuck::cast_slice_mut(&mut planes[..count]));
         planes
     }
 
