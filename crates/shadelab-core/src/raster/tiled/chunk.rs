@@ -350,8 +350,9 @@ impl<S: Simd, const A: usize> Setup<'_, '_, S, A> {
 
 impl Chunk {
     /// Walks polygons `faces` and bins their triangles, with the method's
-    /// `A` attributes, compiled for the SIMD level (for the compiler's own
-    /// vectorization: the arithmetic is the same, so are the results).
+    /// `A` attributes, compiled for the SIMD level `simd`: the planes'
+    /// arithmetic is its `solve_planes`, the rest the compiler's own
+    /// vectorization (the same arithmetic on every level, so the same results).
     #[inline(always)]
     fn setup<S: Simd, const A: usize, P: PolygonSource>(
         &mut self,
