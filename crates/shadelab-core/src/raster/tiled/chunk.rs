@@ -347,7 +347,8 @@ impl<S: Simd, const A: usize> Setup<'_, '_, S, A> {
             // a tenth of the bunny's 1920×1080 Phong frame). Consecutive
             // triangles mostly share bands, so the lines are there by then.
             // The meshes' 1920×1080 rows: medians 2–10 % lower
-            // (BENCHMARKS.md, "Prefetching the bins").
+            // (BENCHMARKS.md, "The same AMD EPYC: d380fe5, the bins
+            // prefetched").
             if let Some(next) = bin.triangles.spare_capacity_mut().get(3) {
                 prefetch(next);
             }
