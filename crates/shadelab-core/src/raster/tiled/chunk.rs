@@ -349,10 +349,10 @@ impl<S: Simd, const A: usize> Setup<'_, '_, S, A> {
             // The meshes' 1920×1080 rows: medians 2–10 % lower
             // (BENCHMARKS.md, "The same AMD EPYC: d380fe5, the bins
             // prefetched").
-            if let Some(next) = bin.triangles.spare_capacity_mut().get(3) {
+            if let Some(next) = bin.triangles.spare_capacity_mut().get(PREFETCH_TRIANGLES) {
                 prefetch(next);
             }
-            if let Some(next) = bin.planes.spare_capacity_mut().get(24) {
+            if let Some(next) = bin.planes.spare_capacity_mut().get(PREFETCH_PLANES) {
                 prefetch(next);
             }
             if A == ALL_ATTRS {
@@ -362,6 +362,14 @@ impl<S: Simd, const A: usize> Setup<'_, '_, S, A> {
         }
     }
 }
+
+/// How many triangles past a bin's end `Setup::bin` prefetches (240
+/// bytes): the distance measured in BENCHMARKS.md.
+const PREFETCH_TRIANGLES: usize = 3;
+
+/// How many planes past a bin's end `Setup::bin` prefetches: three Phong
+/// triangles' eight planes (288 bytes), as measured.
+const PREFETCH_PLANES: usize = 24;
 
 impl Chunk {
     /// Walks polygons `faces` and bins their triangles, with the method's
