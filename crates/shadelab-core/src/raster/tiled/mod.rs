@@ -339,6 +339,12 @@ impl Rasterize for TiledRasterizer {
         let bands = image
             .pixels_mut()
             .par_chunks_mut(width * BAND_ROWS as usize)
+            // Each band its own job, so that a thread out of work can take
+            // any one band left: rayon's default split leaves runs of
+            // several bands that one thread must draw alone while the
+            // other waits at the end of the frame (BENCHMARKS.md, "bands one
+            // job each").
+            .with_max_len(1)
             .enumerate();
         let totals = bands.map(|(index, pixels)| {
             let mut guard = scratch_band(scratch);
@@ -434,6 +440,8 @@ impl TiledRasterizer {
             .par_chunks_mut(band_len)
             .zip(gouraud.pixels_mut().par_chunks_mut(band_len))
             .zip(phong_image.pixels_mut().par_chunks_mut(band_len))
+            // Each band its own job, as in `render`.
+            .with_max_len(1)
             .enumerate();
         // One walk of each triangle: the three methods share coverage and
         // depth, so the fragments and pixels drawn are the same for each.
