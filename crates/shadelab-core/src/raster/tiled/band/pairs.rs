@@ -188,11 +188,21 @@ impl Band {
         let mut fragments = self.queue_blocks(s, f, row, row_start, (x, left, right), head);
         let mut x = x + 8 * head as i32;
         let mut pairs = Pairs::new(s, f, row, (x, left, right));
-        for _ in 0..(blocks - head) / 2 {
-            let at = row_start + x as usize;
-            let depth: &mut [f32; 16] = (&mut self.depth[at..at + 16]).try_into().unwrap();
-            let (z, pass) = pairs.depth_test(s, depth);
-            if pass == 0xffff {
+        let (count, mut k) = ((blocks - head) / 2, 0);
+        while k < count {
+            // Whole pairs while the queue has room. This loop holds no
+            // lighting: the lighting, inlined into the same function, needs
+            // every register, and with it in the loop the pairs' constants
+            // were reloaded from the stack for each pair; out of it, once
+            // per light of the queue. The fragments are queued and lit in
+            // the same order as with the lighting inside.
+            while k < count && !self.queue_full::<S>() {
+                let at = row_start + x as usize;
+                let depth: &mut [f32; 16] = (&mut self.depth[at..at + 16]).try_into().unwrap();
+                let (z, pass) = pairs.depth_test(s, depth);
+                if pass != 0xffff {
+                    break;
+                }
                 z.store_to(depth);
                 let mut attrs = pairs.attributes(f);
                 if f.t.flip != 1.0 {
@@ -200,13 +210,32 @@ impl Band {
                         *a = *a * f.t.flip;
                     }
                 }
-                self.queue_pair(s, f, &attrs, at);
+                self.append_pair(s, &attrs[..Sh::ATTRS], at);
                 fragments += 16;
-            } else if pass != 0 {
+                pairs.step();
+                x += 16;
+                k += 1;
+            }
+            if k == count {
+                break;
+            }
+            if self.queue_full::<S>() {
+                self.shade_queue(s, f.shader, f.shader_lanes);
+                continue;
+            }
+            // A pair not whole (partly outside the span, or partly or
+            // wholly hidden): its blocks one by one, which redo the test.
+            let at = row_start + x as usize;
+            let depth: &[f32; 16] = (&self.depth[at..at + 16]).try_into().unwrap();
+            if pairs.depth_test(s, depth).1 != 0 {
                 fragments += self.queue_blocks(s, f, row, row_start, (x, left, right), 2);
             }
             pairs.step();
             x += 16;
+            k += 1;
+        }
+        if self.queue_full::<S>() {
+            self.shade_queue(s, f.shader, f.shader_lanes);
         }
         let rest = (blocks - head) % 2;
         fragments + self.queue_blocks(s, f, row, row_start, (x, left, right), rest)

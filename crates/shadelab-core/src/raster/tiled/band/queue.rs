@@ -83,28 +83,29 @@ impl Band {
 
     /// Appends a pair of whole blocks from buffer index `at`, interpolated
     /// in 16 lanes (`pairs.rs`), to the lighting queue, as
-    /// [`Band::queue_lit`] would append the two blocks.
+    /// [`Band::queue_lit`] would append the two blocks, but does not light
+    /// it: the caller does once [`Band::queue_full`] says so. The queue must
+    /// not be full.
     #[inline(always)]
-    pub(super) fn queue_pair<S: Simd, Sh: Shader>(
-        &mut self,
-        s: S,
-        f: &Fill<'_, S, Sh>,
-        attrs: &[S::F16; MAX_ATTRS],
-        at: usize,
-    ) {
+    pub(super) fn append_pair<S: Simd>(&mut self, s: S, attrs: &[S::F16], at: usize) {
         let q = &mut self.queue;
         let len = q.len;
-        for k in 0..Sh::ATTRS {
-            attrs[k].store_to(&mut q.attrs[k][len..len + 16]);
+        for (k, a) in attrs.iter().enumerate() {
+            a.store_to(&mut q.attrs[k][len..len + 16]);
         }
         let index = Vi::ramp(s) + Vi::splat(s, at as i32);
         s.i_store(index.0, (&mut q.at[len..len + 8]).try_into().unwrap());
         let index = index + Vi::splat(s, 8);
         s.i_store(index.0, (&mut q.at[len + 8..len + 16]).try_into().unwrap());
         q.len = len + 16;
-        if q.len >= 16 * S::LIT_GROUPS {
-            self.shade_queue(s, f.shader, f.shader_lanes);
-        }
+    }
+
+    /// Whether the queue holds the `16 · S::LIT_GROUPS` fragments that
+    /// [`Band::shade_queue`] lights: the point at which every append
+    /// but [`Band::append_pair`]'s lights them.
+    #[inline(always)]
+    pub(super) fn queue_full<S: Simd>(&self) -> bool {
+        self.queue.len >= 16 * S::LIT_GROUPS
     }
 
     /// Interpolates the fragments at columns `x`, `dy` rows down (buffer
@@ -146,7 +147,7 @@ impl Band {
         }
         s.i_store(index, (&mut q.at[len..len + 8]).try_into().unwrap());
         q.len = len + count;
-        if q.len >= 16 * S::LIT_GROUPS {
+        if self.queue_full::<S>() {
             self.shade_queue(s, f.shader, f.shader_lanes);
         }
     }
