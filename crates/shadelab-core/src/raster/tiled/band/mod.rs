@@ -616,7 +616,23 @@ mod tests {
     #[test]
     fn finish_writes_every_pixel_at_every_alignment() {
         for level in SimdLevel::supported() {
-            for (width, columns) in [(203, 0..203), (203, 41..150), (256, 8..200), (67, 60..67)] {
+            // Drawn runs of every length modulo 4 blocks, starting at every
+            // block modulo 4; none drawn; rows narrower than four blocks.
+            let cases = [
+                (203, 0..203),
+                (203, 41..150),
+                (256, 8..200),
+                (67, 60..67),
+                (203, 0..0),
+                (203, 96..104),
+                (203, 100..118),
+                (203, 24..58),
+                (203, 120..197),
+                (29, 3..20),
+                (29, 0..29),
+                (7, 0..7),
+            ];
+            for (width, columns) in cases {
                 for height in [5, 1 << 20] {
                     for offset in 0..32 {
                         let finish = Finish {
