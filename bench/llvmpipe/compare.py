@@ -14,7 +14,7 @@ one process can load only one Mesa: the worker makes an offscreen EGL context
 answers one JSON request per line on stdin with a JSON line on stdout.
 
 Prints a markdown report: the side-by-side table with a ratio per Mesa,
-shadelab alone (1 and 2 threads, Mtri/s, Mpix/s, cycles per pixel), how
+the newest Mesa's ratio round by round, shadelab alone (1 and 2 threads, Mtri/s, Mpix/s, cycles per pixel), how
 time grows with triangles and pixels, and how often the images differ by
 more than 2/255 (llvmpipe as a second correctness reference).
 
@@ -247,6 +247,35 @@ def main():
     report(args, mesas, rows, machine or {}, started, load_before, load_after)
 
 
+def round_by_round(p, newest, rows):
+    """Each row's ratio against the newest Mesa in every round, their median,
+    and how many reached 3×: a round's two times were taken one after the
+    other, so a slow spell of a shared machine weighs on both, where the
+    ratio of the two medians can pair a fast round of one with a slow round
+    of the other."""
+    p(f"### Round by round against {newest.name}")
+    p("")
+    p(
+        f"A round's ratio is its {newest.name} median over its shadelab median (2 threads), timed one"
+        " after the other."
+    )
+    p("")
+    p("| model | size | shading | the rounds' ratios | median | rounds at 3× or more |")
+    p("|---|---|---|---|---:|---:|")
+    met = 0
+    for r in rows:
+        ratios = [gl / ours for gl, ours in zip(r["gl_rounds"][-1], r["ours_rounds"])]
+        median = statistics.median(ratios)
+        met += median >= 3
+        p(
+            f"| {r['model']} | {r['size']} | {r['shading']} | {' '.join(f'{x:.2f}' for x in ratios)} "
+            f"| {median:.2f}× | {sum(x >= 3 for x in ratios)} of {len(ratios)} |"
+        )
+    p("")
+    p(f"Rows whose median round is at 3× or more: {met} of {len(rows)}.")
+    p("")
+
+
 def report(args, mesas, rows, machine, started, load_before, load_after):
     out = []
     p = out.append
@@ -284,6 +313,7 @@ def report(args, mesas, rows, machine, started, load_before, load_after):
         for i, m in enumerate(mesas)
     ) + ".")
     p("")
+    round_by_round(p, newest, rows)
     clock = machine.get("clock_mhz")
     nominal = nominal_mhz()
     p("### shadelab alone: threads, throughput, cycles per pixel")
