@@ -14,9 +14,10 @@ one process can load only one Mesa: the worker makes an offscreen EGL context
 answers one JSON request per line on stdin with a JSON line on stdout.
 
 Prints a markdown report: the side-by-side table with a ratio per Mesa,
-the newest Mesa's ratio round by round, shadelab alone (1 and 2 threads, Mtri/s, Mpix/s, cycles per pixel), how
-time grows with triangles and pixels, and how often the images differ by
-more than 2/255 (llvmpipe as a second correctness reference).
+the newest Mesa's ratio round by round, shadelab alone (1 and 2 threads,
+Mtri/s, Mpix/s, cycles per pixel), how time grows with triangles and
+pixels, and how often the images differ by more than 2/255 (llvmpipe as a
+second correctness reference).
 
 Run it through run.sh, which installs what it needs.
 """
