@@ -22,16 +22,16 @@ pub(super) struct Bin {
     /// `plane_count` planes per triangle, but for the triangles whose
     /// planes the band solves (see `corners`).
     pub(super) planes: Vec<Plane>,
-    /// The three methods at once: per triangle, the mesh corner of its
-    /// first vertex, whose planes the band solves from its corners as setup
-    /// would (`Frame::planes_of`), or `u32::MAX` for a clipped or fan
+    /// The three methods at once: per triangle, where its corners' inputs
+    /// are, from which the band solves its planes as setup would
+    /// (`Frame::planes_of`), or [`CornerRefs::NONE`] for a clipped or fan
     /// triangle, whose planes are in `planes`. Empty for one method.
     ///
-    /// A mesh triangle's 11 planes are 132 bytes against the corner's 4:
-    /// the bins are less than half as large, and a frame writes and reads
-    /// that much less (the viewer's dragon: the slower part's engine 12.1 →
-    /// 11.2 ms in Chromium; BENCHMARKS.md, "Planes solved in the band").
-    pub(super) corners: Vec<u32>,
+    /// A mesh triangle's 11 planes are 132 bytes against these 36: the
+    /// bins are less than half as large, and a frame writes and reads that
+    /// much less (the viewer's dragon: the slower part's engine 12.1 → 11.2
+    /// ms in Chromium; BENCHMARKS.md, "Planes solved in the band").
+    pub(super) corners: Vec<CornerRefs>,
     /// The columns `[x0, x1)` of the triangles' boxes, together (empty:
     /// `x0 >= x1`): the band clears and reads back only those.
     pub(super) columns: (i32, i32),
@@ -43,6 +43,35 @@ impl Bin {
         self.planes.clear();
         self.corners.clear();
         self.columns = (i32::MAX, i32::MIN);
+    }
+}
+
+/// Where a mesh triangle's three corners find their inputs: their
+/// positions' (and projected vertices') indices, their normals' and their
+/// Gouraud colours' (vertex table) indices.
+///
+/// Setup reads them from the corner arrays in submission order, where
+/// consecutive triangles share cache lines. A band meets its triangles
+/// skipping those of other bands, so that reading the corner arrays there
+/// was a miss per triangle before the reads it leads to (BENCHMARKS.md,
+/// "The viewer's engine under a profiler").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct CornerRefs {
+    pub(super) position: [u32; 3],
+    pub(super) normal: [u32; 3],
+    pub(super) lit: [u32; 3],
+}
+
+impl CornerRefs {
+    /// No mesh triangle: the planes are in the bin.
+    pub(super) const NONE: CornerRefs = CornerRefs {
+        position: [u32::MAX; 3],
+        normal: [u32::MAX; 3],
+        lit: [u32::MAX; 3],
+    };
+
+    pub(super) fn is_none(&self) -> bool {
+        self.position[0] == u32::MAX
     }
 }
 
@@ -114,23 +143,40 @@ impl Frame<'_> {
     }
 
     /// The planes of the three methods at once of mesh triangle `t`, whose
-    /// first corner is `corner`, from the window positions `projected`: as
-    /// `Setup::triangle` would have solved them (the same inputs).
+    /// corners' inputs are at `refs`, from the window positions
+    /// `projected`: as `Setup::triangle` would have solved them (the same
+    /// inputs as [`Frame::front_attrs`] reads).
     #[inline(always)]
     pub(super) fn planes_of<S: Simd>(
         &self,
         s: S,
         t: &Triangle,
-        corner: usize,
+        refs: &CornerRefs,
         projected: &[Projected],
     ) -> [Plane; super::setup::PLANES] {
-        let corners = self.scene.mesh.corners();
+        let (normals, positions) = (&self.scene.normals.normals, self.scene.mesh.positions());
         let vertex = |k: usize| {
-            projected[corners[corner + k] as usize]
-                .vertex(self.front_attrs::<ALL_ATTRS>(corner + k))
+            let n = normals[refs.normal[k] as usize];
+            let p = positions[refs.position[k] as usize];
+            let c = self.lit[refs.lit[k] as usize];
+            projected[refs.position[k] as usize]
+                .vertex([n.x, n.y, n.z, p.x, p.y, p.z, c[0], c[1], c[2]])
         };
         let v: [ScreenVertex<ALL_ATTRS>; 3] = [vertex(0), vertex(1), vertex(2)];
         t.planes(s, &v, ALL_ATTRS, self.options.interpolation)
+    }
+
+    /// Where the corners of the mesh triangle whose first corner is
+    /// `corner` find their inputs ([`Frame::planes_of`]).
+    #[inline(always)]
+    fn corner_refs(&self, corner: usize) -> CornerRefs {
+        let (positions, normals) = (self.scene.mesh.corners(), self.scene.normals.corner());
+        let at = |of: &[u32]| -> [u32; 3] { of[corner..corner + 3].try_into().unwrap() };
+        CornerRefs {
+            position: at(positions),
+            normal: at(normals),
+            lit: at(self.corner_vertex),
+        }
     }
 
     /// Whether flat shading's colours are set up (in `Triangle::color`).
@@ -265,13 +311,13 @@ impl<S: Simd, const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, S, A> {
         }
         if A == ALL_ATTRS {
             // The band solves the planes (see `Bin::corners`).
-            self.bin(&t, &[], first_corner as u32);
+            self.bin(&t, &[], &frame.corner_refs(first_corner));
             return;
         }
         let vertex = |k: usize| p[k].vertex(frame.front_attrs::<A>(first_corner + k));
         let v: [ScreenVertex<A>; 3] = [vertex(0), vertex(1), vertex(2)];
         let planes = t.planes(self.simd, &v, A, options.interpolation);
-        self.bin(&t, &planes[..plane_count(A)], u32::MAX);
+        self.bin(&t, &planes[..plane_count(A)], &CornerRefs::NONE);
     }
 
     /// Any other polygon: split into the fan both rasterizers use.
@@ -311,7 +357,7 @@ impl<S: Simd, const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, S, A> {
             t.color = color;
             t.flip = if back { -1.0 } else { 1.0 };
             t.once = once;
-            self.bin(&t, &planes[..plane_count(attrs)], u32::MAX);
+            self.bin(&t, &planes[..plane_count(attrs)], &CornerRefs::NONE);
         }
     }
 }
@@ -327,11 +373,11 @@ impl<S: Simd, const A: usize> Setup<'_, '_, S, A> {
     }
 
     /// Adds a set-up triangle to the bins of the drawn bands it touches:
-    /// with its `planes`, or, for the three methods at once, with the mesh
-    /// corner of its first vertex `corner` and no planes, which the band
-    /// then solves (`u32::MAX`: none, the planes are given).
+    /// with its `planes`, or, for the three methods at once, with where its
+    /// corners' inputs are (`corners`) and no planes, which the band then
+    /// solves ([`CornerRefs::NONE`]: the planes are given).
     #[inline(always)]
-    fn bin(&mut self, t: &Triangle, planes: &[Plane], corner: u32) {
+    fn bin(&mut self, t: &Triangle, planes: &[Plane], corners: &CornerRefs) {
         let bands = t.bands();
         let rows = &self.frame.rows;
         let drawn = rows.start as usize / BAND_ROWS as usize
@@ -356,7 +402,7 @@ impl<S: Simd, const A: usize> Setup<'_, '_, S, A> {
                 prefetch(next);
             }
             if A == ALL_ATTRS {
-                bin.corners.push(corner);
+                bin.corners.push(*corners);
             }
             bin.columns = (bin.columns.0.min(t.x0), bin.columns.1.max(t.x1));
         }

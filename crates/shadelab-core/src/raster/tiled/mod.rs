@@ -19,7 +19,7 @@
 //!    faces drawn, polygons) is split into the fan both rasterizers use.
 //!    Each triangle is copied, with its planes, into the bin of every band
 //!    it touches (for the three methods at once, a mesh triangle with its
-//!    first corner instead: the band solves its planes, see below). Flat
+//!    corners' indices instead: the band solves its planes, see below). Flat
 //!    shading lights the chunk's front polygons after its walk, 8 at a
 //!    time; a flat triangle holds its polygon's index into the chunk's
 //!    colours.
@@ -63,9 +63,10 @@
 //!   interpolates each attribute on its own, and each method's colours are
 //!   computed with its own frame's operations, so the bytes and counts are
 //!   those of three frames (`tests/methods.rs`). Their planes are 11 per
-//!   triangle, 132 bytes: a mesh triangle is binned with its first corner
-//!   instead, and each band it touches solves them from the corners with
-//!   setup's function and inputs (`Frame::planes_of`). On small triangles
+//!   triangle, 132 bytes: a mesh triangle is binned with its corners'
+//!   indices instead (`CornerRefs`, read by setup in submission order), and
+//!   each band it touches solves them from the corners with setup's
+//!   function and inputs (`Frame::planes_of`). On small triangles
 //!   (one band, mostly) that costs less than writing and reading them,
 //!   most of all in a frame whose bins' memory has gone cold. On meshes of
 //!   70k–100k small triangles the three cost about half of three frames
@@ -201,8 +202,8 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             for (k, t) in bin.triangles.iter().enumerate() {
                 let solved;
                 let planes = match sources {
-                    Some((frame, projected)) if bin.corners[k] != u32::MAX => {
-                        solved = frame.planes_of(simd, t, bin.corners[k] as usize, projected);
+                    Some((frame, projected)) if !bin.corners[k].is_none() => {
+                        solved = frame.planes_of(simd, t, &bin.corners[k], projected);
                         &solved[..stride]
                     }
                     _ => stored.next().expect("a stored triangle's planes"),
