@@ -185,22 +185,15 @@ impl Lanes for Wide {
         let dst: &mut [i32; 16] = dst.try_into().unwrap();
         // SAFETY: see `Wide`; `dst` is 16 lanes.
         unsafe {
-            // As `Avx2::f_to_bytes`: `min(255.5, c)` keeps NaN, which
-            // truncates to i32::MIN; the saturation to 0..=255 is then a
-            // maximum with zero (no lane is above 255).
-            #[inline(always)]
-            unsafe fn byte(c: Wide) -> __m512i {
-                let top = _mm512_set1_ps(255.5);
-                _mm512_max_epi32(
-                    _mm512_cvttps_epi32(_mm512_min_ps(top, c.0)),
-                    _mm512_setzero_si512(),
-                )
-            }
-            let (r, g, b) = (byte(r), byte(g), byte(b));
-            let packed = _mm512_or_si512(
-                r,
-                _mm512_or_si512(_mm512_slli_epi32::<8>(g), _mm512_slli_epi32::<16>(b)),
-            );
+            // As `Avx2::f_to_bytes`, per 128-bit quarter: `min(255.5, c)`
+            // keeps NaN, which truncates to i32::MIN; the packs saturate
+            // to 0..=255 (no lane is above 255) into r0..r3 g0..g3 b0..b3
+            // b0..b3 of four pixels, then gathered per pixel.
+            let top = _mm512_set1_ps(255.5);
+            let [r, g, b] = [r, g, b].map(|c| _mm512_cvttps_epi32(_mm512_min_ps(top, c.0)));
+            let planar = _mm512_packus_epi16(_mm512_packs_epi32(r, g), _mm512_packs_epi32(b, b));
+            let quarter = _mm_setr_epi8(0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1);
+            let packed = _mm512_shuffle_epi8(planar, _mm512_broadcast_i32x4(quarter));
             _mm512_storeu_si512(dst.as_mut_ptr().cast(), packed);
         }
     }

@@ -102,6 +102,61 @@ fn to_bytes_truncates_and_saturates() {
     }
 }
 
+/// The same through the 16 lanes Phong's queue and the pairs of blocks
+/// store ([`Lanes::store_bytes`] of [`Simd::F16`]), each byte in every
+/// position.
+struct Bytes16([f32; 16]);
+
+impl Kernel for Bytes16 {
+    type Output = [i32; 16];
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> [i32; 16] {
+        let r = s.f16_load(&self.0);
+        let g = s.f16_load(&std::array::from_fn(|i| self.0[(i + 5) % 16]));
+        let b = s.f16_load(&std::array::from_fn(|i| self.0[(i + 11) % 16]));
+        let mut out = [0; 16];
+        <S::F16 as crate::simd::Lanes>::store_bytes(r, g, b, &mut out);
+        out
+    }
+}
+
+#[test]
+fn store_bytes_truncates_and_saturates_in_16_lanes() {
+    let v = [
+        0.49,
+        0.5,
+        254.99,
+        255.5,
+        256.0,
+        -3.0,
+        f32::NAN,
+        3e9,
+        1.0,
+        17.75,
+        128.0,
+        -0.0,
+        99.9,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        200.5,
+    ];
+    let byte = |c: f32| {
+        if c >= 255.0 {
+            255
+        } else if c >= 0.0 {
+            c as i32
+        } else {
+            0
+        }
+    };
+    let want: [i32; 16] = std::array::from_fn(|i| {
+        byte(v[i]) | byte(v[(i + 5) % 16]) << 8 | byte(v[(i + 11) % 16]) << 16
+    });
+    for level in SimdLevel::supported() {
+        assert_eq!(dispatch(level, Bytes16(v)), want, "{level:?}");
+    }
+}
+
 #[test]
 fn lane_operations() {
     for level in SimdLevel::supported() {

@@ -549,11 +549,11 @@ mod tests {
             let x = Vf::load(s, &std::array::from_fn(|i| (i * 101) as f32));
             let attrs = walk::interpolate_planes(
                 Interpolation::Perspective,
-                6,
-                3,
+                (6, 3),
                 x,
                 |j| Vf::splat(s, dx[j]),
                 |j| Vf::splat(s, row[j]),
+                None,
             );
             let lanes = |v: Vf<S>| {
                 let mut out = [0f32; 8];
@@ -606,6 +606,74 @@ mod tests {
     fn phong_normals_interpolate_without_w() {
         for level in SimdLevel::supported() {
             dispatch(level, ScaleFree);
+        }
+    }
+
+    /// w taken once per row ([`walk::row_w`]) gives the same bits as w per
+    /// pixel wherever it is taken, and is not taken elsewhere.
+    struct RowW;
+
+    impl Kernel for RowW {
+        type Output = ();
+        fn run<S: Simd>(self, s: S) {
+            use crate::raster::Interpolation::{Perspective, Screen};
+            use crate::simd::Vf;
+            let bits = |attrs: [Vf<S>; MAX_ATTRS]| {
+                attrs.map(|v| {
+                    let mut out = [0f32; 8];
+                    v.store(&mut out);
+                    out.map(f32::to_bits)
+                })
+            };
+            let columns = [
+                [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0],
+                [-9.0, 4093.0, 1e6, -0.0, 0.5, 17.0, 1919.0, -3.5],
+            ];
+            for inv_w in [
+                1.0,
+                0.5,
+                1.0 / 3.0,
+                1.0 / 40.0,
+                7.25e-3,
+                3.0e-7,
+                1.0e30,
+                -0.25,
+            ] {
+                for dx1 in [0.0, -0.0] {
+                    for x in columns {
+                        let x = Vf::load(s, &x);
+                        let dx = [0.0, dx1, 0.01, -0.02, 0.003];
+                        let row = [0.5, inv_w, 0.25, 0.75, -0.125];
+                        let w = walk::row_w(Perspective, (3, 0), dx1, inv_w, x);
+                        assert!(w.is_some(), "1/w = {inv_w}, dx = {dx1}");
+                        let at = |w| {
+                            walk::interpolate_planes(
+                                Perspective,
+                                (3, 0),
+                                x,
+                                |j| Vf::splat(s, dx[j]),
+                                |j| Vf::splat(s, row[j]),
+                                w,
+                            )
+                        };
+                        assert!(bits(at(w)) == bits(at(None)), "1/w = {inv_w}, dx = {dx1}");
+                    }
+                }
+            }
+            let x = Vf::splat(s, 1.0);
+            // A 1/w that changes along the row, a zero 1/w, no perspective,
+            // or no attribute that needs w.
+            assert!(walk::row_w(Perspective, (3, 0), 1e-9, 0.5, x).is_none());
+            assert!(walk::row_w(Perspective, (3, 0), 0.0, 0.0, x).is_none());
+            assert!(walk::row_w(Screen, (3, 0), 0.0, 0.5, x).is_none());
+            assert!(walk::row_w(Perspective, (3, 3), 0.0, 0.5, x).is_none());
+        }
+    }
+
+    #[test]
+    fn w_per_row_is_w_per_pixel() {
+        for level in SimdLevel::supported() {
+            dispatch(level, RowW);
         }
     }
 

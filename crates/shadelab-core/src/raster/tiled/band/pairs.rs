@@ -21,7 +21,7 @@
 //! Pairs start at a multiple of 16 columns, a cache line of the buffers
 //! (`depth_buffer.rs`), after a lone first block where needed.
 
-use super::walk::{interpolate_planes, shade_block, Fill, Row};
+use super::walk::{interpolate_planes, row_w, shade_block, Fill, Row};
 use super::Band;
 use crate::raster::tiled::setup::plane_count;
 use crate::shade::{Shader, MAX_ATTRS};
@@ -74,17 +74,41 @@ impl<S: Simd> Pairs<S> {
         (z, <S::F16 as Lanes>::mask_bits(pass))
     }
 
-    /// The current pair's attributes (normals not yet turned for back faces).
+    /// w for the row's pairs where it is the same along the row
+    /// ([`row_w`]), else `None`.
     #[inline(always)]
-    fn attributes<Sh: Shader>(&self, f: &Fill<'_, S, Sh>) -> [S::F16; MAX_ATTRS] {
+    fn row_w<Sh: Shader>(&self, f: &Fill<'_, S, Sh>, row: &Row) -> Option<S::F16> {
+        // Flat has no 1/w plane. No closure: see `Surface::radiance`.
+        if plane_count(Sh::ATTRS) > 1 {
+            let planes = (Sh::ATTRS, Sh::SCALE_FREE);
+            row_w(
+                f.interpolation,
+                planes,
+                f.planes[1].dx,
+                row.values[1],
+                self.sixteen,
+            )
+        } else {
+            None
+        }
+    }
+
+    /// The current pair's attributes (normals not yet turned for back
+    /// faces), with w for the row if the caller has it ([`Pairs::row_w`]).
+    #[inline(always)]
+    fn attributes<Sh: Shader>(
+        &self,
+        f: &Fill<'_, S, Sh>,
+        w: Option<S::F16>,
+    ) -> [S::F16; MAX_ATTRS] {
         let (dx, at_row) = (&self.dx, &self.at_row);
         interpolate_planes(
             f.interpolation,
-            Sh::ATTRS,
-            Sh::SCALE_FREE,
+            (Sh::ATTRS, Sh::SCALE_FREE),
             self.column,
             |j| dx[j],
             |j| at_row[j],
+            w,
         )
     }
 
@@ -126,13 +150,15 @@ pub(super) fn fill_span<S: Simd, Sh: Shader>(
     let mut fragments = blocks(s, f, row, (x, left, right), depth_head, color_head);
     let mut x = x + head as i32;
     let mut pairs = Pairs::new(s, f, row, (x, left, right));
+    let w = pairs.row_w(f, row);
     let (depth_pairs, depth_rest) = depth.as_chunks_mut::<16>();
     let (color_pairs, color_rest) = color.as_chunks_mut::<16>();
     for (depth, color) in depth_pairs.iter_mut().zip(color_pairs) {
         let (z, pass) = pairs.depth_test(s, depth);
         if pass == 0xffff {
             z.store_to(depth);
-            f.shader.shade_lanes(f.color, &pairs.attributes(f), color);
+            f.shader
+                .shade_lanes(f.color, &pairs.attributes(f, w), color);
             fragments += 16;
         } else if pass != 0 {
             fragments += blocks(s, f, row, (x, left, right), depth, color);
@@ -188,6 +214,7 @@ impl Band {
         let mut fragments = self.queue_blocks(s, f, row, row_start, (x, left, right), head);
         let mut x = x + 8 * head as i32;
         let mut pairs = Pairs::new(s, f, row, (x, left, right));
+        let w = pairs.row_w(f, row);
         let (count, mut k) = ((blocks - head) / 2, 0);
         while k < count {
             // Whole pairs while the queue has room. This loop holds no
@@ -205,7 +232,7 @@ impl Band {
                     break;
                 }
                 z.store_to(depth);
-                let mut attrs = pairs.attributes(f);
+                let mut attrs = pairs.attributes(f, w);
                 if f.t.flip != 1.0 {
                     for a in &mut attrs[..3] {
                         *a = *a * f.t.flip;

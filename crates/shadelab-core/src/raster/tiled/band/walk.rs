@@ -292,11 +292,11 @@ impl Band {
         let plane = |j: usize| &f.planes[GOURAUD_OF_ALL[j]];
         let colors = interpolate_planes(
             f.interpolation,
-            3,
-            0,
+            (3, 0),
             x,
             |j| Vf::splat(s, plane(j).dx),
             |j| Vf::splat(s, plane(j).at_origin + plane(j).dy * dy),
+            None,
         );
         let gouraud = GouraudShader.shade(&(), s, f.color, f.t.flip, &colors);
         for (k, colors) in [flat, gouraud].into_iter().enumerate() {
@@ -476,7 +476,8 @@ pub(super) fn interpolate<S: Simd, Sh: Shader>(
     at_row: impl Fn(usize) -> Vf<S>,
 ) -> [Vf<S>; MAX_ATTRS] {
     let (count, scale_free) = (Sh::ATTRS, Sh::SCALE_FREE);
-    let mut attrs = interpolate_planes(f.interpolation, count, scale_free, x, |k| f.dx[k], at_row);
+    let planes = (count, scale_free);
+    let mut attrs = interpolate_planes(f.interpolation, planes, x, |k| f.dx[k], at_row, None);
     if Sh::DEFERRED && f.t.flip != 1.0 {
         for k in 0..3 {
             attrs[k] = attrs[k] * f.t.flip;
@@ -489,27 +490,60 @@ pub(super) fn interpolate<S: Simd, Sh: Shader>(
 /// `dx(j)` and its value at the first column of the row `at_row(j)`:
 /// plane 1 is 1/w, attribute `k` is plane `2 + k` (divided by w in
 /// perspective mode, so multiplied back by the interpolated w, except the
-/// first `scale_free`, see [`Shader::SCALE_FREE`]).
+/// first `scale_free`, see [`Shader::SCALE_FREE`]). `row_w`: w itself
+/// when the caller has it for the whole row ([`row_w`]), else `None`.
 #[inline(always)]
 pub(super) fn interpolate_planes<L: Lanes>(
     interpolation: Interpolation,
-    count: usize,
-    scale_free: usize,
+    (count, scale_free): (usize, usize),
     x: L,
     dx: impl Fn(usize) -> L,
     at_row: impl Fn(usize) -> L,
+    row_w: Option<L>,
 ) -> [L; MAX_ATTRS] {
     let mut attrs = [x.splat_like(0.0); MAX_ATTRS];
     for k in 0..count {
         attrs[k] = x.mul_add(dx(2 + k), at_row(2 + k));
     }
     if interpolation == Interpolation::Perspective && count > scale_free {
-        let w = x.mul_add(dx(1), at_row(1)).recip();
+        // No closure (`Option::unwrap_or_else`): see `Surface::radiance`
+        // (left out of line, it cost Phong's meshes a third more time).
+        let w = match row_w {
+            Some(w) => w,
+            None => x.mul_add(dx(1), at_row(1)).recip(),
+        };
         for k in scale_free..count {
             attrs[k] = attrs[k] * w;
         }
     }
     attrs
+}
+
+/// w along a row of a triangle whose 1/w plane does not change along x
+/// (`dx1 == 0`, as when its corners' w are equal: a triangle parallel to
+/// the screen), given the plane's value at the row `inv_w`, in the lanes
+/// of `like`; `None` otherwise, or when w is not needed (see
+/// [`interpolate_planes`]).
+///
+/// Each lane's w is then `recip(x·dx1 + inv_w)` with `x·dx1 = ±0` (the
+/// columns are finite), which is `recip(inv_w)` exactly for a nonzero
+/// `inv_w`: the same bytes as per pixel, one reciprocal per row instead
+/// of one per pixel (a fifth of a Gouraud pair's instructions).
+#[inline(always)]
+pub(super) fn row_w<L: Lanes>(
+    interpolation: Interpolation,
+    (count, scale_free): (usize, usize),
+    dx1: f32,
+    inv_w: f32,
+    like: L,
+) -> Option<L> {
+    let needed = interpolation == Interpolation::Perspective && count > scale_free;
+    // No closure (`bool::then`): see `Surface::radiance`.
+    if needed && dx1 == 0.0 && inv_w != 0.0 {
+        Some(like.splat_like(inv_w).recip())
+    } else {
+        None
+    }
 }
 
 /// The columns `[left, right)` of row `y` whose centres are inside the
