@@ -81,23 +81,24 @@ impl Kernel for Bytes {
     }
 }
 
+/// A channel in byte units as the backends store it: truncated, NaN and
+/// negatives to 0, 255 and above to 255.
+fn byte(c: f32) -> i32 {
+    if c >= 255.0 {
+        255
+    } else if c >= 0.0 {
+        c as i32
+    } else {
+        0
+    }
+}
+
 #[test]
 fn to_bytes_truncates_and_saturates() {
     let v = [0.49, 0.5, 254.99, 255.5, 256.0, -3.0, f32::NAN, 3e9];
     for level in SimdLevel::supported() {
         let got = dispatch(level, Bytes(v));
-        let want = v.map(|r| {
-            let byte = |c: f32| {
-                if c >= 255.0 {
-                    255
-                } else if c >= 0.0 {
-                    c as i32
-                } else {
-                    0
-                }
-            };
-            byte(r) | byte(r + 1.0) << 8 | 7 << 16
-        });
+        let want = v.map(|r| byte(r) | byte(r + 1.0) << 8 | 7 << 16);
         assert_eq!(got, want, "{level:?}");
     }
 }
@@ -140,15 +141,6 @@ fn store_bytes_truncates_and_saturates_in_16_lanes() {
         f32::NEG_INFINITY,
         200.5,
     ];
-    let byte = |c: f32| {
-        if c >= 255.0 {
-            255
-        } else if c >= 0.0 {
-            c as i32
-        } else {
-            0
-        }
-    };
     let want: [i32; 16] = std::array::from_fn(|i| {
         byte(v[i]) | byte(v[(i + 5) % 16]) << 8 | byte(v[(i + 11) % 16]) << 16
     });
