@@ -505,7 +505,7 @@ pub(super) fn interpolate_planes<L: Lanes>(
     for k in 0..count {
         attrs[k] = x.mul_add(dx(2 + k), at_row(2 + k));
     }
-    if interpolation == Interpolation::Perspective && count > scale_free {
+    if needs_w(interpolation, (count, scale_free)) {
         // No closure (`Option::unwrap_or_else`): see `Surface::radiance`
         // (left out of line, it cost Phong's meshes a third more time).
         let w = match row_w {
@@ -517,6 +517,14 @@ pub(super) fn interpolate_planes<L: Lanes>(
         }
     }
     attrs
+}
+
+/// Whether [`interpolate_planes`] multiplies attributes by w: in
+/// perspective mode, for `count` attributes of which the first
+/// `scale_free` are not.
+#[inline(always)]
+fn needs_w(interpolation: Interpolation, (count, scale_free): (usize, usize)) -> bool {
+    interpolation == Interpolation::Perspective && count > scale_free
 }
 
 /// w along a row of a triangle whose 1/w plane does not change along x
@@ -532,14 +540,13 @@ pub(super) fn interpolate_planes<L: Lanes>(
 #[inline(always)]
 pub(super) fn row_w<L: Lanes>(
     interpolation: Interpolation,
-    (count, scale_free): (usize, usize),
+    planes: (usize, usize),
     dx1: f32,
     inv_w: f32,
     like: L,
 ) -> Option<L> {
-    let needed = interpolation == Interpolation::Perspective && count > scale_free;
     // No closure (`bool::then`): see `Surface::radiance`.
-    if needed && dx1 == 0.0 && inv_w != 0.0 {
+    if needs_w(interpolation, planes) && dx1 == 0.0 && inv_w != 0.0 {
         Some(like.splat_like(inv_w).recip())
     } else {
         None
