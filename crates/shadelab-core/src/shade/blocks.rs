@@ -62,8 +62,16 @@ pub(crate) trait Shader: Sync {
     /// As [`Shader::shade`] on `L::LANES` fragments at once (a span's
     /// blocks two at a time, see `raster/tiled/band/pairs.rs`), with the
     /// same operations lane by lane, the colours stored into `colors`
-    /// (`L::LANES` long). Only called when not `DEFERRED`.
-    fn shade_lanes<L: Lanes>(&self, color: u32, attrs: &[L; MAX_ATTRS], colors: &mut [i32]) {
+    /// (`L::LANES` long). Only called when not `DEFERRED`. `BELOW`: every
+    /// lane of the attributes is known to be below 2^31 or NaN (see
+    /// `fill_span`), so the conversion to bytes may drop its guard
+    /// ([`Lanes::store_bytes_below`]).
+    fn shade_lanes<L: Lanes, const BELOW: bool>(
+        &self,
+        color: u32,
+        attrs: &[L; MAX_ATTRS],
+        colors: &mut [i32],
+    ) {
         let _ = (color, attrs, colors);
     }
     /// Colours of 8 fragments of one triangle, packed `r | g << 8 | b << 16`:
@@ -92,7 +100,12 @@ impl Shader for FlatShader {
         Vi::splat(s, color as i32)
     }
     #[inline(always)]
-    fn shade_lanes<L: Lanes>(&self, color: u32, _: &[L; MAX_ATTRS], colors: &mut [i32]) {
+    fn shade_lanes<L: Lanes, const BELOW: bool>(
+        &self,
+        color: u32,
+        _: &[L; MAX_ATTRS],
+        colors: &mut [i32],
+    ) {
         colors.fill(color as i32);
     }
 }
@@ -112,8 +125,17 @@ impl Shader for GouraudShader {
         Vf::to_bytes(a[0], a[1], a[2])
     }
     #[inline(always)]
-    fn shade_lanes<L: Lanes>(&self, _: u32, a: &[L; MAX_ATTRS], colors: &mut [i32]) {
-        L::store_bytes(a[0], a[1], a[2], colors);
+    fn shade_lanes<L: Lanes, const BELOW: bool>(
+        &self,
+        _: u32,
+        a: &[L; MAX_ATTRS],
+        colors: &mut [i32],
+    ) {
+        if BELOW {
+            L::store_bytes_below(a[0], a[1], a[2], colors);
+        } else {
+            L::store_bytes(a[0], a[1], a[2], colors);
+        }
     }
 }
 

@@ -52,6 +52,26 @@ impl<W: Width> Avx2<W> {
         }
     }
 
+    /// Truncated channels, saturated to bytes (0..=255) and packed per
+    /// lane as `r | g << 8 | b << 16`: the end of [`Simd::f_to_bytes`].
+    #[inline(always)]
+    fn pack_bytes(self, r: __m256i, g: __m256i, b: __m256i) -> __m256i {
+        // SAFETY: as for the `Simd` impl below: `self` is an `Avx2`.
+        unsafe {
+            // Per 128-bit half, as bytes with saturation: r0..r3 g0..g3
+            // b0..b3 b0..b3 (lanes 4..7 in the upper half), then
+            // gathered per pixel.
+            let rg = _mm256_packs_epi32(r, g);
+            let bb = _mm256_packs_epi32(b, b);
+            let planar = _mm256_packus_epi16(rg, bb);
+            let per_pixel = _mm256_setr_epi8(
+                0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1, //
+                0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1,
+            );
+            _mm256_shuffle_epi8(planar, per_pixel)
+        }
+    }
+
     pub fn new() -> Option<Avx2<W>> {
         (std::is_x86_feature_detected!("avx2")
             && std::is_x86_feature_detected!("fma")
@@ -347,17 +367,23 @@ impl<W: Width> Simd for Avx2<W> {
             // truncation stays within i32.
             let top = _mm256_set1_ps(255.5);
             let [r, g, b] = [r, g, b].map(|c| _mm256_cvttps_epi32(_mm256_min_ps(top, c)));
-            // Per 128-bit half, as bytes with saturation: r0..r3 g0..g3
-            // b0..b3 b0..b3 (lanes 4..7 in the upper half), then
-            // gathered per pixel.
-            let rg = _mm256_packs_epi32(r, g);
-            let bb = _mm256_packs_epi32(b, b);
-            let planar = _mm256_packus_epi16(rg, bb);
-            let per_pixel = _mm256_setr_epi8(
-                0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1, //
-                0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1,
-            );
-            _mm256_shuffle_epi8(planar, per_pixel)
+            self.pack_bytes(r, g, b)
+        }
+    }
+
+    #[inline(always)]
+    fn f_to_bytes_below(self, r: __m256, g: __m256, b: __m256) -> __m256i {
+        // SAFETY: see the impl.
+        unsafe {
+            // No guard: below 2^31 the truncation stays within i32 (NaN
+            // and anything at or below -2^31 give i32::MIN, saturated to
+            // 0 as with the guard).
+            let [r, g, b] = [
+                _mm256_cvttps_epi32(r),
+                _mm256_cvttps_epi32(g),
+                _mm256_cvttps_epi32(b),
+            ];
+            self.pack_bytes(r, g, b)
         }
     }
 

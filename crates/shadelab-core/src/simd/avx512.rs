@@ -182,15 +182,25 @@ impl Lanes for Wide {
     }
     #[inline(always)]
     fn store_bytes(r: Wide, g: Wide, b: Wide, dst: &mut [i32]) {
+        // As `Avx2::f_to_bytes`: `min(255.5, c)` keeps NaN, which
+        // truncates to i32::MIN; the packs saturate to 0..=255.
+        let top = r.splat_like(255.5);
+        Wide::store_bytes_below(top.min(r), top.min(g), top.min(b), dst)
+    }
+    #[inline(always)]
+    fn store_bytes_below(r: Wide, g: Wide, b: Wide, dst: &mut [i32]) {
         let dst: &mut [i32; 16] = dst.try_into().unwrap();
         // SAFETY: see `Wide`; `dst` is 16 lanes.
         unsafe {
-            // As `Avx2::f_to_bytes`, per 128-bit quarter: `min(255.5, c)`
-            // keeps NaN, which truncates to i32::MIN; the packs saturate
-            // to 0..=255 (no lane is above 255) into r0..r3 g0..g3 b0..b3
-            // b0..b3 of four pixels, then gathered per pixel.
-            let top = _mm512_set1_ps(255.5);
-            let [r, g, b] = [r, g, b].map(|c| _mm512_cvttps_epi32(_mm512_min_ps(top, c.0)));
+            // Per 128-bit quarter, the truncated lanes (below 2^31, or
+            // NaN or at most -2^31, which give i32::MIN) saturate to
+            // 0..=255 in the packs into r0..r3 g0..g3 b0..b3 b0..b3 of
+            // four pixels, then are gathered per pixel.
+            let [r, g, b] = [
+                _mm512_cvttps_epi32(r.0),
+                _mm512_cvttps_epi32(g.0),
+                _mm512_cvttps_epi32(b.0),
+            ];
             let planar = _mm512_packus_epi16(_mm512_packs_epi32(r, g), _mm512_packs_epi32(b, b));
             let quarter = _mm_setr_epi8(0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1);
             let packed = _mm512_shuffle_epi8(planar, _mm512_broadcast_i32x4(quarter));

@@ -286,6 +286,14 @@ pub(crate) trait Simd: Copy + Send + Sync {
     /// truncated and saturated to 0..=255 (NaN to 0, as Rust's `as u8`),
     /// packed per lane as `r | g << 8 | b << 16`.
     fn f_to_bytes(self, r: Self::F, g: Self::F, b: Self::F) -> Self::I;
+    /// As [`Simd::f_to_bytes`], for channels whose lanes are all below
+    /// 2^31 or NaN (never +∞): the same result, without the guard some
+    /// backends take for larger values (`avx2.rs`). See `fill_span` in
+    /// `raster/tiled/band/pairs.rs` for who may call it.
+    #[inline(always)]
+    fn f_to_bytes_below(self, r: Self::F, g: Self::F, b: Self::F) -> Self::I {
+        self.f_to_bytes(r, g, b)
+    }
 
     /// The low three bytes of each lane, packed: 8 RGB pixels.
     fn i_store_rgb(self, v: Self::I, dst: &mut [u8; 24]);

@@ -105,8 +105,8 @@ fn to_bytes_truncates_and_saturates() {
 
 /// The same through the 16 lanes Phong's queue and the pairs of blocks
 /// store ([`Lanes::store_bytes`] of [`Simd::F16`]), each byte in every
-/// position.
-struct Bytes16([f32; 16]);
+/// position; with `true`, [`Lanes::store_bytes_below`].
+struct Bytes16([f32; 16], bool);
 
 impl Kernel for Bytes16 {
     type Output = [i32; 16];
@@ -116,8 +116,26 @@ impl Kernel for Bytes16 {
         let g = s.f16_load(&std::array::from_fn(|i| self.0[(i + 5) % 16]));
         let b = s.f16_load(&std::array::from_fn(|i| self.0[(i + 11) % 16]));
         let mut out = [0; 16];
-        <S::F16 as crate::simd::Lanes>::store_bytes(r, g, b, &mut out);
+        if self.1 {
+            <S::F16 as crate::simd::Lanes>::store_bytes_below(r, g, b, &mut out);
+        } else {
+            <S::F16 as crate::simd::Lanes>::store_bytes(r, g, b, &mut out);
+        }
         out
+    }
+}
+
+/// [`Bytes16`] of `v` against [`byte`], with the guard and, if `below`,
+/// without it too.
+fn check_bytes16(v: [f32; 16], below: bool) {
+    let want: [i32; 16] = std::array::from_fn(|i| {
+        byte(v[i]) | byte(v[(i + 5) % 16]) << 8 | byte(v[(i + 11) % 16]) << 16
+    });
+    for level in SimdLevel::supported() {
+        assert_eq!(dispatch(level, Bytes16(v, false)), want, "{level:?}");
+        if below {
+            assert_eq!(dispatch(level, Bytes16(v, true)), want, "{level:?}, below");
+        }
     }
 }
 
@@ -141,12 +159,13 @@ fn store_bytes_truncates_and_saturates_in_16_lanes() {
         f32::NEG_INFINITY,
         200.5,
     ];
-    let want: [i32; 16] = std::array::from_fn(|i| {
-        byte(v[i]) | byte(v[(i + 5) % 16]) << 8 | byte(v[(i + 11) % 16]) << 16
-    });
-    for level in SimdLevel::supported() {
-        assert_eq!(dispatch(level, Bytes16(v)), want, "{level:?}");
-    }
+    check_bytes16(v, false);
+    // Without the guard, for channels below 2^31 or NaN (what
+    // `planes_below` vouches for): the same bytes, up to the largest `f32`
+    // below 2^31 and down past -2^31.
+    let mut below = v;
+    (below[7], below[10], below[13]) = (2_147_483_520.0, 65_536.5, -3e9);
+    check_bytes16(below, true);
 }
 
 #[test]

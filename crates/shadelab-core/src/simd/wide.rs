@@ -51,6 +51,9 @@ pub(crate) trait Lanes:
     /// Channels in byte units plus one half to packed colours (see
     /// [`Simd::f_to_bytes`]), stored into `dst`, `LANES` long.
     fn store_bytes(r: Self, g: Self, b: Self, dst: &mut [i32]);
+    /// As [`Lanes::store_bytes`], for channels whose lanes are all below
+    /// 2^31 or NaN (never +∞), see [`Simd::f_to_bytes_below`].
+    fn store_bytes_below(r: Self, g: Self, b: Self, dst: &mut [i32]);
 }
 
 impl<S: Simd> Lanes for Vf<S> {
@@ -110,6 +113,11 @@ impl<S: Simd> Lanes for Vf<S> {
     fn store_bytes(r: Self, g: Self, b: Self, dst: &mut [i32]) {
         let s = r.1;
         s.i_store(s.f_to_bytes(r.0, g.0, b.0), dst.try_into().unwrap());
+    }
+    #[inline(always)]
+    fn store_bytes_below(r: Self, g: Self, b: Self, dst: &mut [i32]) {
+        let s = r.1;
+        s.i_store(s.f_to_bytes_below(r.0, g.0, b.0), dst.try_into().unwrap());
     }
 }
 
@@ -214,5 +222,11 @@ impl<V: Lanes> Lanes for Pair<V> {
         let (low, high) = dst.split_at_mut(V::LANES);
         V::store_bytes(r.0, g.0, b.0, low);
         V::store_bytes(r.1, g.1, b.1, high);
+    }
+    #[inline(always)]
+    fn store_bytes_below(r: Self, g: Self, b: Self, dst: &mut [i32]) {
+        let (low, high) = dst.split_at_mut(V::LANES);
+        V::store_bytes_below(r.0, g.0, b.0, low);
+        V::store_bytes_below(r.1, g.1, b.1, high);
     }
 }

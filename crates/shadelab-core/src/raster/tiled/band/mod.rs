@@ -677,6 +677,90 @@ mod tests {
         }
     }
 
+    /// [`walk::planes_below`] says yes only where the attributes at every
+    /// column between the ends are below 2^31 or NaN (checked column by
+    /// column, 16 at a time), and says yes to ordinary colours.
+    struct PlanesBelow;
+
+    impl Kernel for PlanesBelow {
+        type Output = ();
+        fn run<S: Simd>(self, s: S) {
+            use crate::raster::Interpolation::{self, Perspective, Screen};
+            use crate::simd::Lanes;
+            let ramp = s.f16_load(&std::array::from_fn(|i| i as f32));
+            let splat = |v: f32| ramp.splat_like(v);
+            let (first, last) = (3.0, 1002.0);
+            let colours = ([0.0, 0.0, 0.1, -0.2, 0.05], [0.5, 0.0, 10.0, 250.0, 128.0]);
+            let with = |k: usize, dx: f32, row: f32| {
+                let (mut d, mut r) = colours;
+                (d[2 + k], r[2 + k]) = (dx, row);
+                (d, r)
+            };
+            // The interpolation, the planes (dx, value at the row), the
+            // row's 1/w if any, the attributes (count, scale-free), and
+            // the verdict.
+            type Case = (
+                Interpolation,
+                ([f32; 5], [f32; 5]),
+                Option<f32>,
+                (usize, usize),
+                bool,
+            );
+            let cases: [Case; 13] = [
+                (Screen, colours, None, (3, 0), true),
+                (Screen, with(0, 3e6, 0.0), None, (3, 0), false),
+                (Screen, with(1, 6e6, -3e9), None, (3, 0), false),
+                (Screen, with(2, -3e6, 0.0), None, (3, 0), true),
+                (Screen, with(0, -1e3, 2.147e9), None, (3, 0), true),
+                (Screen, with(1, f32::NAN, 0.0), None, (3, 0), false),
+                (Screen, with(2, 0.0, f32::INFINITY), None, (3, 0), false),
+                (Screen, colours, None, (0, 0), false),
+                (Perspective, colours, None, (3, 0), false),
+                (Perspective, colours, None, (3, 3), true),
+                (Perspective, colours, Some(0.01), (3, 0), true),
+                (Perspective, colours, Some(1e-8), (3, 0), false),
+                (Perspective, with(0, -1e4, 0.0), Some(1e-5), (3, 0), true),
+            ];
+            for (k, (interpolation, (dx, row), inv_w, planes, want)) in
+                cases.into_iter().enumerate()
+            {
+                let w = inv_w.map(|v| splat(v).recip());
+                let (dx, row) = (|j| splat(dx[j]), |j| splat(row[j]));
+                let got = walk::planes_below(
+                    interpolation,
+                    planes,
+                    (splat(first), splat(last)),
+                    dx,
+                    row,
+                    w,
+                );
+                assert_eq!(got, want, "case {k}");
+                if !got {
+                    continue;
+                }
+                for x in (first as usize..=last as usize).step_by(16) {
+                    let x = ramp + splat(x as f32);
+                    let attrs = walk::interpolate_planes(interpolation, planes, x, dx, row, w);
+                    for a in &attrs[..planes.0] {
+                        let mut lanes = [0f32; 16];
+                        a.store_to(&mut lanes);
+                        assert!(
+                            lanes.iter().all(|v| v.is_nan() || *v < 2_147_483_648.0),
+                            "case {k}: {lanes:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn planes_below_2_31_between_the_ends() {
+        for level in SimdLevel::supported() {
+            dispatch(level, PlanesBelow);
+        }
+    }
+
     /// Every pixel and the count come out right whatever the output's
     /// alignment (each offset of 1 pixel moves it by 3 bytes, so 32
     /// offsets give every address modulo 32), with and without streaming

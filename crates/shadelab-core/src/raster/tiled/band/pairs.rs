@@ -20,8 +20,15 @@
 //! `Band::block`), which redoes its depth test: nothing was stored yet.
 //! Pairs start at a multiple of 16 columns, a cache line of the buffers
 //! (`depth_buffer.rs`), after a lone first block where needed.
+//!
+//! A row's whole pairs run in one of three instances of one loop, chosen
+//! once per row so that no pair tests anything but its depths: w per pixel;
+//! w for the whole row (or 1, not needed); and the same without Gouraud's
+//! guard before its conversion to bytes, where [`planes_below`] shows that
+//! no lane of the row can reach 2^31 (the guard's only effect is on such
+//! values, so the bytes are the same).
 
-use super::walk::{interpolate_planes, row_w, shade_block, Fill, Row};
+use super::walk::{interpolate_planes, needs_w, planes_below, row_w, shade_block, Fill, Row};
 use super::Band;
 use crate::raster::tiled::setup::plane_count;
 use crate::shade::{Shader, MAX_ATTRS};
@@ -112,6 +119,42 @@ impl<S: Simd> Pairs<S> {
         )
     }
 
+    /// As [`Pairs::attributes`] given w for the row (1 where w is not
+    /// needed: `a·1 = a` exactly), which multiplies without a test per
+    /// pair: the same bits.
+    #[inline(always)]
+    fn attributes_times<Sh: Shader>(&self, w: S::F16) -> [S::F16; MAX_ATTRS] {
+        let mut attrs = [w.splat_like(0.0); MAX_ATTRS];
+        for k in 0..Sh::ATTRS {
+            attrs[k] = self.column.mul_add(self.dx[2 + k], self.at_row[2 + k]);
+        }
+        for a in &mut attrs[Sh::SCALE_FREE..Sh::ATTRS] {
+            *a = *a * w;
+        }
+        attrs
+    }
+
+    /// Whether every lane the row's whole pairs hand to
+    /// [`Shader::shade_lanes`] has attributes below 2^31 or NaN
+    /// ([`planes_below`]), given the row's w ([`Pairs::row_w`]) and the
+    /// span `left..right`, in which all of a whole pair's lanes lie.
+    #[inline(always)]
+    fn below<Sh: Shader>(
+        &self,
+        f: &Fill<'_, S, Sh>,
+        w: Option<S::F16>,
+        (left, right): (i32, i32),
+    ) -> bool {
+        let x0 = f.t.x0;
+        let ends = (
+            self.sixteen.splat_like((left - x0) as f32),
+            self.sixteen.splat_like((right - 1 - x0) as f32),
+        );
+        let (dx, at_row) = (&self.dx, &self.at_row);
+        let planes = (Sh::ATTRS, Sh::SCALE_FREE);
+        planes_below(f.interpolation, planes, ends, |j| dx[j], |j| at_row[j], w)
+    }
+
     /// On to the next pair.
     #[inline(always)]
     fn step(&mut self) {
@@ -148,17 +191,65 @@ pub(super) fn fill_span<S: Simd, Sh: Shader>(
     let (depth_head, depth) = depth.split_at_mut(head);
     let (color_head, color) = color.split_at_mut(head);
     let mut fragments = blocks(s, f, row, (x, left, right), depth_head, color_head);
-    let mut x = x + head as i32;
+    let x = x + head as i32;
     let mut pairs = Pairs::new(s, f, row, (x, left, right));
-    let w = pairs.row_w(f, row);
+    // w for the whole row, 1 where no attribute needs it, or `None`: per
+    // pixel. The loop below is compiled for each case, with no test per
+    // pair.
+    let w = match pairs.row_w(f, row) {
+        Some(w) => Some(w),
+        None if needs_w(f.interpolation, (Sh::ATTRS, Sh::SCALE_FREE)) => None,
+        None => Some(pairs.sixteen.splat_like(1.0)),
+    };
     let (depth_pairs, depth_rest) = depth.as_chunks_mut::<16>();
     let (color_pairs, color_rest) = color.as_chunks_mut::<16>();
-    for (depth, color) in depth_pairs.iter_mut().zip(color_pairs) {
+    let count = depth_pairs.len();
+    let buffers = (depth_pairs, color_pairs);
+    let span = (x, left, right);
+    // Gouraud's conversion to bytes guards against values of 2^31 and
+    // more (a sliver's planes can reach them), 3 of a pair's ~25
+    // instructions. A row whose attributes stay below that everywhere
+    // (nearly all rows of a large triangle with w the same along them)
+    // takes the loop without the guard: the same bytes. Worth a check
+    // from a few pairs on.
+    fragments += match w {
+        Some(w) if count >= 4 && pairs.below(f, Some(w), (left, right)) => {
+            whole_pairs::<S, Sh, true, true>(s, f, row, &mut pairs, w, span, buffers)
+        }
+        Some(w) => whole_pairs::<S, Sh, false, true>(s, f, row, &mut pairs, w, span, buffers),
+        None => {
+            let unused = pairs.sixteen;
+            whole_pairs::<S, Sh, false, false>(s, f, row, &mut pairs, unused, span, buffers)
+        }
+    };
+    let x = x + 16 * count as i32;
+    fragments + blocks(s, f, row, (x, left, right), depth_rest, color_rest)
+}
+
+/// The pairs of blocks of [`fill_span`] from column `x`, in `buffers`'
+/// depths and colours: with w for the whole row ([`Pairs::attributes_times`])
+/// if `ROW_W`, else per pixel; with [`Shader::shade_lanes`]'s `BELOW`.
+#[inline(always)]
+fn whole_pairs<S: Simd, Sh: Shader, const BELOW: bool, const ROW_W: bool>(
+    s: S,
+    f: &Fill<'_, S, Sh>,
+    row: &Row,
+    pairs: &mut Pairs<S>,
+    w: S::F16,
+    (x, left, right): Span,
+    (depth, color): (&mut [[f32; 16]], &mut [[i32; 16]]),
+) -> u32 {
+    let (mut x, mut fragments) = (x, 0);
+    for (depth, color) in depth.iter_mut().zip(color) {
         let (z, pass) = pairs.depth_test(s, depth);
         if pass == 0xffff {
             z.store_to(depth);
-            f.shader
-                .shade_lanes(f.color, &pairs.attributes(f, w), color);
+            let attrs = if ROW_W {
+                pairs.attributes_times::<Sh>(w)
+            } else {
+                pairs.attributes(f, None)
+            };
+            f.shader.shade_lanes::<_, BELOW>(f.color, &attrs, color);
             fragments += 16;
         } else if pass != 0 {
             fragments += blocks(s, f, row, (x, left, right), depth, color);
@@ -166,7 +257,7 @@ pub(super) fn fill_span<S: Simd, Sh: Shader>(
         pairs.step();
         x += 16;
     }
-    fragments + blocks(s, f, row, (x, left, right), depth_rest, color_rest)
+    fragments
 }
 
 /// As [`fill_span`], block by block with `shade_block`: a pair that is not

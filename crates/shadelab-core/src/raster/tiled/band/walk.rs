@@ -519,11 +519,48 @@ pub(super) fn interpolate_planes<L: Lanes>(
     attrs
 }
 
+/// Whether every attribute [`interpolate_planes`] gives at every column
+/// from `first` to `last` (lanes of exact integers in `f32`, each lane its
+/// own range) is below 2^31 or NaN, for the same planes and row w; `false`
+/// when that is not known. Gouraud's conversion to bytes may then drop its
+/// guard against larger values (`pairs.rs`).
+///
+/// When w is the row's (`row_w`, one value for the whole row) or not
+/// needed, an attribute is `x·dx + at_row`, then perhaps times w, in
+/// correctly rounded steps of the one variable x: monotonic in x, as each
+/// exact step is and rounding is. So its values between two columns lie
+/// between its values there, which are computed with the same operations.
+/// Where w is taken per pixel it is an estimated reciprocal, which need
+/// not be monotonic: `false`.
+#[inline(always)]
+pub(super) fn planes_below<L: Lanes>(
+    interpolation: Interpolation,
+    (count, scale_free): (usize, usize),
+    (first, last): (L, L),
+    dx: impl Fn(usize) -> L,
+    at_row: impl Fn(usize) -> L,
+    row_w: Option<L>,
+) -> bool {
+    if count == 0 || (row_w.is_none() && needs_w(interpolation, (count, scale_free))) {
+        return false;
+    }
+    let planes = (count, scale_free);
+    let first = interpolate_planes(interpolation, planes, first, &dx, &at_row, row_w);
+    let last = interpolate_planes(interpolation, planes, last, &dx, &at_row, row_w);
+    // `gt` is false for NaN, so a NaN at an end says no.
+    let limit = first[0].splat_like(2_147_483_648.0);
+    let mut below = limit.gt(first[0]) & limit.gt(last[0]);
+    for k in 1..count {
+        below = below & limit.gt(first[k]) & limit.gt(last[k]);
+    }
+    L::mask_bits(below) == u32::MAX >> (32 - L::LANES)
+}
+
 /// Whether [`interpolate_planes`] multiplies attributes by w: in
 /// perspective mode, for `count` attributes of which the first
 /// `scale_free` are not.
 #[inline(always)]
-fn needs_w(interpolation: Interpolation, (count, scale_free): (usize, usize)) -> bool {
+pub(super) fn needs_w(interpolation: Interpolation, (count, scale_free): (usize, usize)) -> bool {
     interpolation == Interpolation::Perspective && count > scale_free
 }
 
