@@ -28,9 +28,7 @@
 //! no lane of the row can reach 2^31 (the guard's only effect is on such
 //! values, so the bytes are the same).
 
-use super::walk::{
-    interpolate_planes, needs_w, planes_below, planes_times, row_w, shade_block, Fill, Row,
-};
+use super::walk::{interpolate_planes, needs_w, planes_below, row_w, shade_block, Fill, Row};
 use super::Band;
 use crate::raster::tiled::setup::plane_count;
 use crate::shade::{Shader, MAX_ATTRS};
@@ -126,9 +124,14 @@ impl<S: Simd> Pairs<S> {
     /// pair: the same bits.
     #[inline(always)]
     fn attributes_times<Sh: Shader>(&self, w: S::F16) -> [S::F16; MAX_ATTRS] {
-        let (dx, at_row) = (&self.dx, &self.at_row);
-        let (count, scale_free) = (Sh::ATTRS, Sh::SCALE_FREE);
-        planes_times(count, scale_free, self.column, |j| dx[j], |j| at_row[j], w)
+        let mut attrs = [w.splat_like(0.0); MAX_ATTRS];
+        for k in 0..Sh::ATTRS {
+            attrs[k] = self.column.mul_add(self.dx[2 + k], self.at_row[2 + k]);
+        }
+        for a in &mut attrs[Sh::SCALE_FREE..Sh::ATTRS] {
+            *a = *a * w;
+        }
+        attrs
     }
 
     /// Whether every lane the row's whole pairs hand to

@@ -501,50 +501,20 @@ pub(super) fn interpolate_planes<L: Lanes>(
     at_row: impl Fn(usize) -> L,
     row_w: Option<L>,
 ) -> [L; MAX_ATTRS] {
-    if !needs_w(interpolation, (count, scale_free)) {
-        return planes_at(count, x, &dx, &at_row);
-    }
-    // No closure (`Option::unwrap_or_else`): see `Surface::radiance`
-    // (left out of line, it cost Phong's meshes a third more time).
-    let w = match row_w {
-        Some(w) => w,
-        None => x.mul_add(dx(1), at_row(1)).recip(),
-    };
-    planes_times(count, scale_free, x, dx, at_row, w)
-}
-
-/// The attribute planes `2..2 + count` at columns `x`, before any w:
-/// `x·dx + at_row` each (see [`interpolate_planes`]).
-#[inline(always)]
-fn planes_at<L: Lanes>(
-    count: usize,
-    x: L,
-    dx: impl Fn(usize) -> L,
-    at_row: impl Fn(usize) -> L,
-) -> [L; MAX_ATTRS] {
     let mut attrs = [x.splat_like(0.0); MAX_ATTRS];
     for k in 0..count {
         attrs[k] = x.mul_add(dx(2 + k), at_row(2 + k));
     }
-    attrs
-}
-
-/// [`interpolate_planes`] given w, with no test of whether w is needed:
-/// attributes `scale_free..count` times `w`. Where w is not needed the
-/// caller passes 1 (`a·1 = a` exactly), so the bits are the same; the
-/// pairs of blocks take this for a row's whole pairs (`pairs.rs`).
-#[inline(always)]
-pub(super) fn planes_times<L: Lanes>(
-    count: usize,
-    scale_free: usize,
-    x: L,
-    dx: impl Fn(usize) -> L,
-    at_row: impl Fn(usize) -> L,
-    w: L,
-) -> [L; MAX_ATTRS] {
-    let mut attrs = planes_at(count, x, dx, at_row);
-    for a in &mut attrs[scale_free..count] {
-        *a = *a * w;
+    if needs_w(interpolation, (count, scale_free)) {
+        // No closure (`Option::unwrap_or_else`): see `Surface::radiance`
+        // (left out of line, it cost Phong's meshes a third more time).
+        let w = match row_w {
+            Some(w) => w,
+            None => x.mul_add(dx(1), at_row(1)).recip(),
+        };
+        for k in scale_free..count {
+            attrs[k] = attrs[k] * w;
+        }
     }
     attrs
 }
