@@ -227,6 +227,54 @@ fn image_sizes_that_are_not_multiples_of_the_block() {
     }
 }
 
+/// Triangles parallel to the image, seen straight on in perspective, so
+/// that their corners' w are equal (the tiled rasterizer takes w once per
+/// row where 1/w does not change along it, `walk::row_w`). Large ones
+/// (spans, pairs of blocks) and small ones (blocks of 8), nearer ones over
+/// farther ones, every method, both interpolation modes: the scanline
+/// rasterizer's pixels within 1/255.
+#[test]
+fn triangles_of_constant_w_match_the_scanline_rasterizer() {
+    let cam = camera(DVec3::new(0.0, 0.0, 4.0), DVec3::ZERO, 50.0, 0.5, 20.0);
+    let mut points = Vec::new();
+    let mut normals = Vec::new();
+    // (corners x, y; depth z): a quad wider than the view at z = 0 (w = 4),
+    // a smaller one in front at z = 1 (w = 3), and small triangles at
+    // z = 2 (w = 2), a few pixels across.
+    let quad = |half: f32, z: f32| {
+        let c = [(-half, -half), (half, -half), (half, half), (-half, half)];
+        [c[0], c[1], c[2], c[0], c[2], c[3]].map(|(x, y)| Vec3::new(x, y, z))
+    };
+    points.extend(quad(3.0, 0.0));
+    points.extend(quad(0.9, 1.0));
+    for k in 0..12 {
+        let (x, y) = (-0.9 + 0.15 * k as f32, 0.5 - 0.08 * k as f32);
+        let size = 0.01 + 0.006 * k as f32;
+        points.extend([
+            Vec3::new(x, y, 2.0),
+            Vec3::new(x + size, y, 2.0),
+            Vec3::new(x, y + size, 2.0),
+        ]);
+    }
+    for k in 0..points.len() {
+        let t = k as f32 * 0.7;
+        normals.push(Vec3::new(0.6 * t.sin(), 0.5 * (1.3 * t).cos(), 1.0).normalize());
+    }
+    let (mesh, normals) = triangle_mesh(&points, &normals);
+    let scene = scene(mesh, normals, cam);
+    for (shading, interpolation) in all_modes() {
+        for (w, h) in [(197, 151), (512, 512)] {
+            let options = RenderOptions {
+                interpolation,
+                gouraud_specular: true,
+                ..options(w, h, shading)
+            };
+            check_equivalent(&format!("constant-w-{w}x{h}"), &scene, &options)
+                .unwrap_or_else(|e| panic!("{shading:?}, {interpolation:?}: {e}"));
+        }
+    }
+}
+
 const W: u32 = 61;
 const H: u32 = 47;
 
