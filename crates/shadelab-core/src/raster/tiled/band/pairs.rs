@@ -122,6 +122,11 @@ impl<S: Simd> Pairs<S> {
     /// As [`Pairs::attributes`] given w for the row (1 where w is not
     /// needed: `a·1 = a` exactly), which multiplies without a test per
     /// pair: the same bits.
+    ///
+    /// The loops repeat [`interpolate_planes`]' on purpose: one helper
+    /// shared by both (a4a03dc) compiled the blocks of 8 worse and made the
+    /// meshes' 1080p Gouraud frames 9–11 % slower (BENCHMARKS.md, "The
+    /// pairs' attributes from walk.rs's own helper").
     #[inline(always)]
     fn attributes_times<Sh: Shader>(&self, w: S::F16) -> [S::F16; MAX_ATTRS] {
         let mut attrs = [w.splat_like(0.0); MAX_ATTRS];
