@@ -291,7 +291,7 @@ def report(args, mesas, rows, machine, started, load_before, load_after):
         f" each row measured in {args.rounds} alternating rounds ({', '.join(m.name for m in mesas)}, then shadelab),"
         " the median round of each kept."
     )
-    p("llvmpipe's frame is clear + draw + glFinish; shadelab's is `Renderer::render_into` (clear, draw, RGB image).")
+    p("llvmpipe's frame is clear + draw + glFinish; shadelab's is `Renderer::render_into` (clear, draw, RGB image), called on one of the pool's threads, as `shadelab batch` renders.")
     p("")
     p(f"### shadelab (tiled, 2 threads) against llvmpipe (2 threads), {' and '.join(m.name for m in mesas)}")
     p("")

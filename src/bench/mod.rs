@@ -319,6 +319,24 @@ fn time_row(
     scene: &Scene,
     options: &RenderOptions,
 ) -> anyhow::Result<Row> {
+    pool.install(|| time_frames(args, simd, scene, options))
+}
+
+/// [`time_row`]'s frames, run on one of the pool's threads, as `shadelab
+/// batch` renders (each of its workers installs its pool once, then renders
+/// mesh after mesh inside it). A frame's parallel work then starts and ends
+/// on a thread that takes part in it.
+///
+/// Timed from outside the pool, every frame also paid for waking the
+/// sleeping caller: 20–40 µs on the KVM AMD EPYC of BENCHMARKS.md, which
+/// was a third of the 512² quad's one-thread frame (0.12 ms against 0.073
+/// ms timed here) and no part of rendering.
+fn time_frames(
+    args: &BenchArgs,
+    simd: SimdLevel,
+    scene: &Scene,
+    options: &RenderOptions,
+) -> anyhow::Result<Row> {
     let mut renderer = Renderer::with_simd(simd);
     let mut image = Image::filled(options.width, options.height, options.background);
     let mut stats = Default::default();
@@ -326,7 +344,7 @@ fn time_row(
     let warm = Instant::now();
     let mut warmed = 0;
     while warmed < args.warmup || warm.elapsed() < warmup_time {
-        stats = pool.install(|| renderer.render_into(scene, options, &mut image))?;
+        stats = renderer.render_into(scene, options, &mut image)?;
         warmed += 1;
     }
     let budget = Duration::from_secs_f64(args.budget.max(0.0));
@@ -334,7 +352,7 @@ fn time_row(
     let mut times = Vec::with_capacity(args.frames as usize);
     while times.len() < args.frames as usize && (times.len() < 3 || start.elapsed() < budget) {
         let t = Instant::now();
-        stats = pool.install(|| renderer.render_into(scene, options, &mut image))?;
+        stats = renderer.render_into(scene, options, &mut image)?;
         times.push(t.elapsed().as_secs_f64() * 1e3);
     }
     let frame_ms = times.clone();

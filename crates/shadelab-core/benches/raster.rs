@@ -95,6 +95,10 @@ fn options(w: u32, h: u32, shading: Shading, rasterizer: Rasterizer) -> RenderOp
 fn benches(c: &mut Criterion) {
     let best = SimdLevel::detect();
     eprintln!("CPU: {}; SIMD: {} (and portable)", cpu(), best.name());
+    // One thread, and the timed iterations run on it (`pool.install` around
+    // `b.iter`, not inside it): installing each frame from outside the pool
+    // added the wake-up of the sleeping caller, 20–40 µs, to every frame
+    // (BENCHMARKS.md, "Frames timed on a thread of the pool").
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -107,11 +111,9 @@ fn benches(c: &mut Criterion) {
             Rasterizer::Scanline => "scanline".to_string(),
         };
         let id = format!("{group}/{raster}/{}", options.shading.name());
+        // The iterations run on the pool's thread (see `pool` above).
         c.bench_function(&id, |b| {
-            b.iter(|| {
-                pool.install(|| renderer.render_into(scene, &options, &mut image))
-                    .unwrap()
-            })
+            pool.install(|| b.iter(|| renderer.render_into(scene, &options, &mut image).unwrap()))
         });
     };
 
@@ -164,8 +166,8 @@ fn benches(c: &mut Criterion) {
             std::array::from_fn(|_| Image::filled(480, 480, Rgb8::new(0, 0, 0)));
         let group = format!("three-methods/{name}-480/tiled-{}", best.name());
         c.bench_function(&format!("{group}/one-by-one"), |b| {
-            b.iter(|| {
-                pool.install(|| {
+            pool.install(|| {
+                b.iter(|| {
                     for (shading, image) in Shading::ALL.into_iter().zip(&mut images) {
                         let options = RenderOptions { shading, ..panel };
                         renderer.render_into(scene, &options, image).unwrap();
@@ -174,8 +176,8 @@ fn benches(c: &mut Criterion) {
             })
         });
         c.bench_function(&format!("{group}/at-once"), |b| {
-            b.iter(|| {
-                pool.install(|| {
+            pool.install(|| {
+                b.iter(|| {
                     let [x, y, z] = &mut images;
                     renderer.render_methods(scene, &panel, [x, y, z]).unwrap()
                 })
