@@ -135,13 +135,20 @@ pub(crate) struct TiledRasterizer {
 
 /// Where a band's result goes.
 enum Output<'a> {
-    /// Image rows, and the background colour packed as in the band.
-    Image(&'a mut [Rgb8], i32),
+    /// Image rows, the background colour packed as in the band, and
+    /// whether they are written with streaming stores ([`streams`]).
+    Image(&'a mut [Rgb8], i32, bool),
     /// The rows of flat's, Gouraud's and Phong's images, drawn at once
     /// ([`AllMethods`]), the background colour, and what solves the planes
     /// of the triangles binned with their corners (see `chunk.rs`, `Bin`):
-    /// the frame's attribute sources and window positions.
-    Methods([&'a mut [Rgb8]; 3], i32, (&'a Frame<'a>, &'a [Projected])),
+    /// the frame's attribute sources and window positions; and whether the
+    /// rows are written with streaming stores ([`streams`]).
+    Methods(
+        [&'a mut [Rgb8]; 3],
+        i32,
+        (&'a Frame<'a>, &'a [Projected]),
+        bool,
+    ),
     /// Coverage counts.
     Counts(&'a mut [u32]),
 }
@@ -195,7 +202,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             // loop, no closure: a closure left out of line would lose the
             // SIMD level's target features.
             let sources = match self.output {
-                Output::Methods(_, _, sources) if !bin.corners.is_empty() => Some(sources),
+                Output::Methods(_, _, sources, _) if !bin.corners.is_empty() => Some(sources),
                 _ => None,
             };
             let mut stored = bin.planes.chunks_exact(stride);
@@ -229,16 +236,16 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         }
         self.band.flush(simd, self.shader, &lanes);
         match self.output {
-            Output::Image(pixels, background) => self.band.finish(
+            Output::Image(pixels, background, stream) => self.band.finish(
                 simd,
                 pixels,
                 o.width,
-                o.height,
                 background,
+                stream,
                 Colors::Shader,
                 Depths::Clear,
             ),
-            Output::Methods([flat, gouraud, phong], background, _) => {
+            Output::Methods([flat, gouraud, phong], background, _, stream) => {
                 // Phong's read last: it clears the depths the others read.
                 let band = &mut *self.band;
                 for (out, colors, depths) in [
@@ -246,13 +253,45 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                     (gouraud, Colors::Gouraud, Depths::Keep),
                     (phong, Colors::Shader, Depths::Clear),
                 ] {
-                    band.finish(simd, out, o.width, o.height, background, colors, depths);
+                    band.finish(simd, out, o.width, background, stream, colors, depths);
                 }
             }
             Output::Counts(counts) => self.band.finish_counts(counts, o.width),
         }
     }
 }
+
+/// Whether a frame's image, `width × height`, of a scene of `polygons`, is
+/// written out with streaming stores, which go around the caches to
+/// memory ([`Simd::i_stream_rgb`]): when it is larger than a core's
+/// second-level cache ([`STREAM_BYTES`]) and the scene has enough polygons
+/// ([`STREAM_POLYGONS`]) for ordinary stores to push out the geometry that
+/// the next frame reads again.
+///
+/// A scene of few polygons has little to keep: there, ordinary stores are
+/// faster, as the image's lines are still in the last-level cache when the
+/// next frame writes them. At 1920×1080 on the KVM Zen 5 EPYC, with two
+/// threads, ordinary stores took 0.88–0.95 of the streaming stores' time
+/// on the full-screen quad (2 triangles), 0.86–0.98 on the sphere (120)
+/// and 0.97–0.99 on the teapot (4,032). On the bunny (69,451) and the
+/// dragon (100,000) they took up to 1.03 with one thread (1.06 with two),
+/// and up to 1.08 on a Zen 4 EPYC (BENCHMARKS.md, "The image streamed out
+/// only for scenes of many polygons").
+fn streams(width: u32, height: u32, polygons: usize) -> bool {
+    let bytes = width as usize * height as usize * 3;
+    bytes >= STREAM_BYTES && polygons >= STREAM_POLYGONS
+}
+
+/// Images of at least this many bytes may be written out with streaming
+/// stores ([`streams`]): larger than a core's second-level cache.
+const STREAM_BYTES: usize = 2 << 20;
+
+/// Scenes of at least this many polygons have their large images written
+/// out with streaming stores ([`streams`]). The teapot's 4,032 triangles
+/// gain from ordinary stores, the bunny's 69,451 lose; at 64 bytes or
+/// more a polygon for its corners, bins and planes, 16,384 of them fill a
+/// 1 MB second-level cache.
+const STREAM_POLYGONS: usize = 16_384;
 
 /// A colour packed as the bands keep it: `r | g << 8 | b << 16`.
 fn packed(Rgb8([r, g, b]): Rgb8) -> i32 {
@@ -335,6 +374,7 @@ impl Rasterize for TiledRasterizer {
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
         let background = packed(options.background);
+        let stream = streams(options.width, options.height, scene.mesh.polygon_count());
         let phong = &self.phong;
         let scratch = &self.bands;
         let bands = image
@@ -350,7 +390,7 @@ impl Rasterize for TiledRasterizer {
         let totals = bands.map(|(index, pixels)| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
-            let output = Output::Image(pixels, background);
+            let output = Output::Image(pixels, background, stream);
             match options.shading {
                 Shading::Flat => band_pass(simd, band, index, chunks, &FlatShader, options, output),
                 Shading::Gouraud => {
@@ -431,6 +471,7 @@ impl TiledRasterizer {
         let width = options.width as usize;
         let (chunks, simd) = (&self.chunks, self.simd);
         let background = packed(options.background);
+        let stream = streams(options.width, options.height, scene.mesh.polygon_count());
         let phong = &self.phong;
         let scratch = &self.bands;
         let band_len = width * BAND_ROWS as usize;
@@ -450,7 +491,7 @@ impl TiledRasterizer {
             let index = first_band + k;
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
-            let output = Output::Methods([f, g, p], background, sources);
+            let output = Output::Methods([f, g, p], background, sources, stream);
             match &phong.one_point_light {
                 Some(one) => {
                     band_pass(simd, band, index, chunks, &AllMethods(one), options, output)
@@ -589,5 +630,24 @@ impl TiledRasterizer {
             bands: options.height.div_ceil(BAND_ROWS) as usize,
             rows: rows.start as i32..rows.end as i32,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::streams;
+
+    /// Large images of many polygons stream; small images, and scenes of
+    /// few polygons, do not.
+    #[test]
+    fn streaming_stores_for_large_images_of_many_polygons() {
+        assert!(streams(1920, 1080, 69_451));
+        assert!(streams(1920, 1080, 16_384));
+        assert!(!streams(1920, 1080, 16_383));
+        assert!(!streams(1920, 1080, 2));
+        assert!(!streams(512, 512, 100_000));
+        // 2 MiB of RGB: 699,051 pixels or more.
+        assert!(streams(699_051, 1, 100_000));
+        assert!(!streams(699_050, 1, 100_000));
     }
 }

@@ -280,8 +280,10 @@ impl Band {
     }
 
     /// Copies the finished band's `colors` into its rows of the image,
-    /// `width × height` pixels (the background where the depth is still 1,
-    /// or outside the drawn columns), and counts the pixels drawn.
+    /// `out`, rows of `width` pixels (the background where the depth is
+    /// still 1, or outside the drawn columns), with streaming stores if
+    /// `stream` (the frame's choice: `streams` in `tiled/mod.rs`), and
+    /// counts the pixels drawn.
     ///
     /// With [`Depths::Clear`] (the band's last read) each row's drawn
     /// columns, the only depths a triangle may write, are set back to 1
@@ -294,8 +296,8 @@ impl Band {
         s: S,
         out: &mut [crate::color::Rgb8],
         width: u32,
-        height: u32,
         background: i32,
+        stream: bool,
         colors: Colors,
         depths: Depths,
     ) {
@@ -310,7 +312,6 @@ impl Band {
         let background = Vi::splat(s, background);
         let mut bg = [0; 8];
         s.i_store(background.0, &mut bg);
-        let stream = width * height as usize * 3 >= STREAM_BYTES;
         // Whole blocks of 8 pixels (the drawn ones from the buffers, the
         // others background); in a large image four at a time from the
         // first whose bytes start at a multiple of 32, so that each four
@@ -441,12 +442,6 @@ impl<S: Simd> BlockColors<'_, S> {
     }
 }
 
-/// Images of at least this many bytes are written out with streaming
-/// stores ([`Simd::i_stream_rgb`]): larger than a core's second-level
-/// cache, they would only push out the mesh and the band buffers that the
-/// next frame reads.
-const STREAM_BYTES: usize = 2 << 20;
-
 /// Room for [`skew`]'s offset: a page of `i32`.
 const SKEW_ROOM: usize = 1024;
 
@@ -480,12 +475,12 @@ mod tests {
     /// A band of `width` pixels per row whose drawn columns are `columns`,
     /// with a depth and a colour per pixel (some still at depth 1, and
     /// stale depths outside the drawn columns), written out at `offset`
-    /// pixels into a larger buffer, as an image of `height` rows.
+    /// pixels into a larger buffer, with streaming stores if `stream`.
     struct Finish {
         width: u32,
         columns: Range<usize>,
         offset: usize,
-        height: u32,
+        stream: bool,
     }
 
     const BACKGROUND: i32 = 0x0030_2010;
@@ -522,8 +517,8 @@ mod tests {
                 s,
                 image,
                 self.width,
-                self.height,
                 BACKGROUND,
+                self.stream,
                 Colors::Shader,
                 Depths::Clear,
             );
@@ -785,16 +780,16 @@ mod tests {
                 (7, 0..7),
             ];
             for (width, columns) in cases {
-                for height in [5, 1 << 20] {
+                for stream in [false, true] {
                     for offset in 0..32 {
                         let finish = Finish {
                             width,
                             columns: columns.clone(),
                             offset,
-                            height,
+                            stream,
                         };
                         let (got, count, want, want_count) = dispatch(level, finish);
-                        let case = format!("{level:?}, width {width}, columns {columns:?}, height {height}, offset {offset}");
+                        let case = format!("{level:?}, width {width}, columns {columns:?}, stream {stream}, offset {offset}");
                         assert!(got == want, "{case}: pixels differ");
                         assert_eq!(count, want_count, "{case}: count");
                     }
