@@ -113,6 +113,22 @@ use crate::simd::{dispatch, Kernel, Simd, SimdLevel};
 /// band walks one bin per chunk, which costs little more.
 const SETUP_CHUNKS_PER_THREAD: usize = 8;
 
+/// The fewest polygons a setup chunk is given (but for a scene of fewer).
+const SETUP_CHUNK_POLYGONS: usize = 64;
+
+/// How many chunks setup splits `polygons` into on `threads` threads:
+/// [`SETUP_CHUNKS_PER_THREAD`] per thread, but none of fewer than
+/// [`SETUP_CHUNK_POLYGONS`] polygons. A scene of a few polygons (the
+/// full-screen quad) is then set up in one chunk, on the calling thread,
+/// instead of as jobs that cost more to hand out than their polygons do
+/// to set up (the quad with two threads: 512×512 flat and Gouraud 5–6 %
+/// faster; BENCHMARKS.md, "Scenes of few polygons set up in one chunk").
+fn setup_chunks(threads: usize, polygons: usize) -> usize {
+    (threads * SETUP_CHUNKS_PER_THREAD)
+        .min(polygons.div_ceil(SETUP_CHUNK_POLYGONS))
+        .max(1)
+}
+
 /// The tiled rasterizer's buffers, reused from frame to frame.
 #[derive(Debug)]
 pub(crate) struct TiledRasterizer {
@@ -565,7 +581,7 @@ impl TiledRasterizer {
                 .unwrap_or_else(|poisoned| poisoned.into_inner());
             band.reserve(options.width, method.is_none());
         }
-        let chunk_count = (rayon::current_num_threads() * SETUP_CHUNKS_PER_THREAD).max(1);
+        let chunk_count = setup_chunks(rayon::current_num_threads(), polygons.count());
         self.chunks.resize_with(chunk_count, Chunk::default);
         self.chunks.truncate(chunk_count);
         // Setup fills the chunks while reading the rest of `self` (the
@@ -635,7 +651,23 @@ impl TiledRasterizer {
 
 #[cfg(test)]
 mod tests {
-    use super::streams;
+    use super::{setup_chunks, streams};
+
+    /// Meshes get 8 chunks per thread; scenes of few polygons fewer, of at
+    /// least 64 polygons each, and at least one.
+    #[test]
+    fn setup_chunks_of_at_least_64_polygons() {
+        assert_eq!(setup_chunks(2, 100_000), 16);
+        assert_eq!(setup_chunks(2, 4_032), 16);
+        assert_eq!(setup_chunks(2, 1_024), 16);
+        assert_eq!(setup_chunks(2, 1_023), 16);
+        assert_eq!(setup_chunks(2, 960), 15);
+        assert_eq!(setup_chunks(2, 120), 2);
+        assert_eq!(setup_chunks(2, 2), 1);
+        assert_eq!(setup_chunks(2, 0), 1);
+        assert_eq!(setup_chunks(1, 100_000), 8);
+        assert_eq!(setup_chunks(0, 100_000), 1);
+    }
 
     /// Large images of many polygons stream; small images, and scenes of
     /// few polygons, do not.
