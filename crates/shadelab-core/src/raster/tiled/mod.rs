@@ -138,7 +138,12 @@ pub(crate) struct TiledRasterizer {
     /// clamped to [0, 1] and kept in byte units ([`byte_units`]).
     lit: Vec<[f32; 3]>,
     lit_back: Vec<[f32; 3]>,
+    /// Setup's chunks: the first `chunks_used` are this frame's
+    /// ([`setup_chunks`]). The others keep their bins' room for a scene of
+    /// more polygons, so that a batch alternating small and large meshes
+    /// does not allocate them again.
     chunks: Vec<Chunk>,
+    chunks_used: usize,
     /// The frame's lighting, prepared for lanes.
     phong: PhongShader,
     /// The last frame's lighting evaluations: flat's (per polygon) and
@@ -363,6 +368,7 @@ impl TiledRasterizer {
             lit: Vec::new(),
             lit_back: Vec::new(),
             chunks: Vec::new(),
+            chunks_used: 0,
             phong: PhongShader::default(),
             evaluations: (0, 0),
             bands: Vec::new(),
@@ -388,7 +394,7 @@ impl Rasterize for TiledRasterizer {
         let method = Some(options.shading);
         let (mut stats, _) = self.geometry(vertices, scene, options, lighting, method, &all_rows);
         let width = options.width as usize;
-        let (chunks, simd) = (&self.chunks, self.simd);
+        let (chunks, simd) = (self.frame_chunks(), self.simd);
         let background = packed(options.background);
         let stream = streams(options.width, options.height, scene.mesh.polygon_count());
         let phong = &self.phong;
@@ -441,7 +447,7 @@ impl Rasterize for TiledRasterizer {
         self.geometry(vertices, scene, options, lighting, method, &all_rows);
         let width = options.width as usize;
         let mut counts = vec![0u32; width * options.height as usize];
-        let (chunks, simd) = (&self.chunks, self.simd);
+        let (chunks, simd) = (self.frame_chunks(), self.simd);
         let scratch = &self.bands;
         counts
             .par_chunks_mut(width * BAND_ROWS as usize)
@@ -485,7 +491,7 @@ impl TiledRasterizer {
         let frame = self.frame(scene, options, None, polygons.centroids(), rows);
         let sources = (&frame, polygons.projected());
         let width = options.width as usize;
-        let (chunks, simd) = (&self.chunks, self.simd);
+        let (chunks, simd) = (self.frame_chunks(), self.simd);
         let background = packed(options.background);
         let stream = streams(options.width, options.height, scene.mesh.polygon_count());
         let phong = &self.phong;
@@ -544,8 +550,8 @@ impl TiledRasterizer {
     /// The vertex stage, Gouraud's vertex lighting, then setup and binning
     /// of the frame's polygons, for `method`'s attributes (`None`: the
     /// three methods') and the image rows `rows` (whole bands; triangles
-    /// outside them are counted, not set up); leaves the bins in
-    /// `self.chunks`.
+    /// outside them are counted, not set up); leaves the bins in the
+    /// first `chunks_used` of `self.chunks`.
     /// The statistics' lighting evaluations are flat's (those the rows
     /// count: see `render_methods`) and Gouraud's (the frame's), also kept
     /// in `self.evaluations`.
@@ -582,26 +588,31 @@ impl TiledRasterizer {
             band.reserve(options.width, method.is_none());
         }
         let chunk_count = setup_chunks(rayon::current_num_threads(), polygons.count());
-        self.chunks.resize_with(chunk_count, Chunk::default);
-        self.chunks.truncate(chunk_count);
+        if self.chunks.len() < chunk_count {
+            self.chunks.resize_with(chunk_count, Chunk::default);
+        }
+        self.chunks_used = chunk_count;
         // Setup fills the chunks while reading the rest of `self` (the
         // frame's attribute sources): taken out meanwhile, no copy.
         let mut chunks = std::mem::take(&mut self.chunks);
         let frame = self.frame(scene, options, method, polygons.centroids(), rows);
         let count = polygons.count();
-        chunks.par_iter_mut().enumerate().for_each(|(i, chunk)| {
-            let start = count * i / chunk_count;
-            let end = count * (i + 1) / chunk_count;
-            dispatch(
-                frame.simd,
-                SetupKernel {
-                    chunk,
-                    frame: &frame,
-                    polygons: &polygons,
-                    faces: start..end,
-                },
-            );
-        });
+        chunks[..chunk_count]
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(i, chunk)| {
+                let start = count * i / chunk_count;
+                let end = count * (i + 1) / chunk_count;
+                dispatch(
+                    frame.simd,
+                    SetupKernel {
+                        chunk,
+                        frame: &frame,
+                        polygons: &polygons,
+                        faces: start..end,
+                    },
+                );
+            });
         self.chunks = chunks;
 
         let mut stats = RenderStats {
@@ -610,7 +621,7 @@ impl TiledRasterizer {
             ..RenderStats::default()
         };
         let mut flat_evaluations = 0;
-        for chunk in &self.chunks {
+        for chunk in self.frame_chunks() {
             let s = &chunk.stats;
             stats.degenerate += s.degenerate;
             stats.invisible += s.invisible;
@@ -621,6 +632,11 @@ impl TiledRasterizer {
         stats.lighting_evaluations += flat_evaluations;
         self.evaluations = (flat_evaluations, evaluations);
         (stats, polygons)
+    }
+
+    /// This frame's setup chunks (see `chunks`).
+    fn frame_chunks(&self) -> &[Chunk] {
+        &self.chunks[..self.chunks_used]
     }
 
     /// What setup, and a band solving the three methods' planes, read of
