@@ -156,22 +156,31 @@ pub(crate) struct TiledRasterizer {
 
 /// Where a band's result goes.
 enum Output<'a> {
-    /// Image rows, the background colour packed as in the band, and
-    /// whether they are written with streaming stores ([`streams`]).
-    Image(&'a mut [Rgb8], i32, bool),
+    /// One method's image rows.
+    Image {
+        rows: &'a mut [Rgb8],
+        write: RowWrite,
+    },
     /// The rows of flat's, Gouraud's and Phong's images, drawn at once
-    /// ([`AllMethods`]), the background colour, and what solves the planes
-    /// of the triangles binned with their corners (see `chunk.rs`, `Bin`):
-    /// the frame's attribute sources and window positions; and whether the
-    /// rows are written with streaming stores ([`streams`]).
-    Methods(
-        [&'a mut [Rgb8]; 3],
-        i32,
-        (&'a Frame<'a>, &'a [Projected]),
-        bool,
-    ),
+    /// ([`AllMethods`]), and what solves the planes of the triangles
+    /// binned with their corners (see `chunk.rs`, `Bin`): the frame's
+    /// attribute sources and window positions.
+    Methods {
+        rows: [&'a mut [Rgb8]; 3],
+        write: RowWrite,
+        sources: (&'a Frame<'a>, &'a [Projected]),
+    },
     /// Coverage counts.
     Counts(&'a mut [u32]),
+}
+
+/// How a band writes image rows out ([`Band::finish`]).
+#[derive(Debug, Clone, Copy)]
+struct RowWrite {
+    /// The background colour, packed as in the band.
+    background: i32,
+    /// Whether the rows are written with streaming stores ([`streams`]).
+    stream: bool,
 }
 
 /// One band's work, compiled per SIMD level. With [`AllMethods`] a bin holds
@@ -194,7 +203,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         let o = self.options;
         let (y0, y1) = band_rows(self.index, o.height);
         let pass = match self.output {
-            Output::Image(..) | Output::Methods(..) => Pass::Shade,
+            Output::Image { .. } | Output::Methods { .. } => Pass::Shade,
             Output::Counts(_) => Pass::Count,
         };
         let (x0, x1) = self
@@ -223,7 +232,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             // loop, no closure: a closure left out of line would lose the
             // SIMD level's target features.
             let sources = match self.output {
-                Output::Methods(_, _, sources, _) if !bin.corners.is_empty() => Some(sources),
+                Output::Methods { sources, .. } if !bin.corners.is_empty() => Some(sources),
                 _ => None,
             };
             let mut stored = bin.planes.chunks_exact(stride);
@@ -257,16 +266,17 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         }
         self.band.flush(simd, self.shader, &lanes);
         match self.output {
-            Output::Image(pixels, background, stream) => self.band.finish(
+            Output::Image { rows, write } => self.band.finish(
                 simd,
-                pixels,
+                rows,
                 o.width,
-                background,
-                stream,
+                write.background,
+                write.stream,
                 Colors::Shader,
                 Depths::Clear,
             ),
-            Output::Methods([flat, gouraud, phong], background, _, stream) => {
+            Output::Methods { rows, write, .. } => {
+                let [flat, gouraud, phong] = rows;
                 // Phong's read last: it clears the depths the others read.
                 let band = &mut *self.band;
                 for (out, colors, depths) in [
@@ -274,6 +284,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                     (gouraud, Colors::Gouraud, Depths::Keep),
                     (phong, Colors::Shader, Depths::Clear),
                 ] {
+                    let (background, stream) = (write.background, write.stream);
                     band.finish(simd, out, o.width, background, stream, colors, depths);
                 }
             }
@@ -412,7 +423,10 @@ impl Rasterize for TiledRasterizer {
         let totals = bands.map(|(index, pixels)| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
-            let output = Output::Image(pixels, background, stream);
+            let output = Output::Image {
+                rows: pixels,
+                write: RowWrite { background, stream },
+            };
             match options.shading {
                 Shading::Flat => band_pass(simd, band, index, chunks, &FlatShader, options, output),
                 Shading::Gouraud => {
@@ -513,7 +527,11 @@ impl TiledRasterizer {
             let index = first_band + k;
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
-            let output = Output::Methods([f, g, p], background, sources, stream);
+            let output = Output::Methods {
+                rows: [f, g, p],
+                write: RowWrite { background, stream },
+                sources,
+            };
             match &phong.one_point_light {
                 Some(one) => {
                     band_pass(simd, band, index, chunks, &AllMethods(one), options, output)
