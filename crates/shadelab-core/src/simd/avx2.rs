@@ -3,7 +3,7 @@
 use std::arch::x86_64::*;
 use std::marker::PhantomData;
 
-use super::{Pair, PlaneSolve, Simd, SolvedPlane, Vf, SOLVE_LANES};
+use super::{Apart, Pair, PlaneSolve, Simd, SolvedPlane, Vf, SOLVE_LANES};
 
 /// The AVX2 backend; a value proves the CPU has AVX2 and FMA (and
 /// POPCNT, BMI1 and BMI2, which every AVX2 processor has), and whatever
@@ -20,6 +20,9 @@ pub(crate) trait Width: Copy + Send + Sync + 'static {
     fn supported() -> bool;
     /// 16 lanes from memory.
     fn load(s: Avx2<Self>, src: &[f32; 16]) -> Self::F16;
+    /// [`Simd::apart`]: `work` in a function of its own with this
+    /// backend's target features.
+    fn apart<K: Apart<Avx2<Self>>>(s: Avx2<Self>, work: K) -> K::Output;
 }
 
 /// Lighting in two 256-bit vectors: plain AVX2.
@@ -34,6 +37,17 @@ impl Width for Ymm {
     #[inline(always)]
     fn load(s: Avx2<Ymm>, src: &[f32; 16]) -> Self::F16 {
         Pair::load(s, src)
+    }
+    #[inline(always)]
+    fn apart<K: Apart<Avx2<Ymm>>>(s: Avx2<Ymm>, work: K) -> K::Output {
+        #[inline(never)]
+        #[target_feature(enable = "avx2,fma,popcnt,bmi1,bmi2")]
+        unsafe fn apart<K: Apart<Avx2<Ymm>>>(s: Avx2<Ymm>, work: K) -> K::Output {
+            work.run(s)
+        }
+        // SAFETY: `s` is an `Avx2`: the CPU has AVX2, FMA, POPCNT, BMI1
+        // and BMI2, the only requirement of a `target_feature` function.
+        unsafe { apart(s, work) }
     }
 }
 
@@ -88,6 +102,11 @@ impl<W: Width> Avx2<W> {
 // `Avx2::new` creates after checking that the CPU has AVX2 and FMA;
 // loads and stores go through references to exactly 8 lanes.
 impl<W: Width> Simd for Avx2<W> {
+    #[inline(always)]
+    fn apart<K: Apart<Self>>(self, work: K) -> K::Output {
+        W::apart(self, work)
+    }
+
     type F = __m256;
     type I = __m256i;
     type F16 = W::F16;

@@ -20,7 +20,7 @@ use std::arch::x86_64::*;
 use std::ops::{Add, Mul, Sub};
 
 use super::avx2::{Avx2, Width};
-use super::{pow_unit, Lanes, Vf};
+use super::{pow_unit, Apart, Lanes, Vf};
 
 /// Lighting in 512-bit vectors: the CPU has AVX-512 F, VL, BW and DQ.
 #[derive(Debug, Clone, Copy)]
@@ -38,6 +38,18 @@ impl Width for Zmm {
     fn load(s: Avx2<Zmm>, src: &[f32; 16]) -> Wide {
         // SAFETY: `s` proves AVX-512 F (`Avx2::<Zmm>::new`); `src` is 16 lanes.
         Wide(unsafe { _mm512_loadu_ps(src.as_ptr()) }, s)
+    }
+    #[inline(always)]
+    fn apart<K: Apart<Avx2<Zmm>>>(s: Avx2<Zmm>, work: K) -> K::Output {
+        #[inline(never)]
+        #[target_feature(enable = "avx2,fma,popcnt,bmi1,bmi2,avx512f,avx512vl,avx512bw,avx512dq")]
+        unsafe fn apart<K: Apart<Avx2<Zmm>>>(s: Avx2<Zmm>, work: K) -> K::Output {
+            work.run(s)
+        }
+        // SAFETY: `s` is an `Avx2<Zmm>` (`Avx2::<Zmm>::new`): the CPU has
+        // AVX2, FMA, POPCNT, BMI1, BMI2 and AVX-512 F, VL, BW and DQ, the
+        // only requirement of a `target_feature` function.
+        unsafe { apart(s, work) }
     }
 }
 

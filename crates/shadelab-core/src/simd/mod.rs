@@ -136,6 +136,15 @@ pub(crate) trait Kernel {
     fn run<S: Simd>(self, simd: S) -> Self::Output;
 }
 
+/// Work compiled for one backend `S` and run apart from its caller
+/// ([`Simd::apart`]). `run` and what it calls must be `#[inline(always)]`.
+pub(crate) trait Apart<S: Simd> {
+    /// What the work produces.
+    type Output;
+    /// Does the work.
+    fn run(self, simd: S) -> Self::Output;
+}
+
 /// Runs `kernel` with the backend for `level` (portable when the CPU lacks it).
 pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, kernel: K) -> K::Output {
     #[cfg(target_arch = "x86_64")]
@@ -320,6 +329,18 @@ pub(crate) trait Simd: Copy + Send + Sync {
     /// whatever this thread does next (nothing where there are none).
     #[inline(always)]
     fn store_fence(self) {}
+
+    /// Runs `work` in a function of its own, compiled for this backend
+    /// and never inlined into the caller (inline where a backend has no
+    /// target features to keep): the caller's loops keep their registers
+    /// whatever `work` holds, and the other way round.
+    #[inline(always)]
+    fn apart<K: Apart<Self>>(self, work: K) -> K::Output
+    where
+        Self: Sized,
+    {
+        work.run(self)
+    }
 
     /// 16 lanes of `f32` for lighting Phong's queued fragments: one
     /// AVX-512 vector ([`SimdLevel::Avx512`]) or a [`Pair`] of this

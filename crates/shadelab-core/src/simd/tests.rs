@@ -319,3 +319,34 @@ fn every_level_solves_planes_bit_for_bit() {
         }
     }
 }
+
+/// [`Simd::apart`] runs its work with the caller's backend: the same
+/// lanes as the work run inline, on every level.
+struct PowApart([f32; 8], f32);
+
+impl<S: Simd> Apart<S> for Pow {
+    type Output = [f32; 8];
+    #[inline(always)]
+    fn run(self, s: S) -> [f32; 8] {
+        Kernel::run(self, s)
+    }
+}
+
+impl Kernel for PowApart {
+    type Output = ([f32; 8], [f32; 8]);
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> Self::Output {
+        let apart = s.apart(Pow(self.0, self.1));
+        (apart, Kernel::run(Pow(self.0, self.1), s))
+    }
+}
+
+#[test]
+fn apart_runs_the_work_with_the_callers_backend() {
+    let x = [0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 0.99, 1.0];
+    for level in SimdLevel::supported() {
+        let (apart, inline) = dispatch(level, PowApart(x, 7.5));
+        let bits = |v: [f32; 8]| v.map(f32::to_bits);
+        assert_eq!(bits(apart), bits(inline), "{level:?}");
+    }
+}

@@ -46,7 +46,12 @@
 //! (packed, rotated behind them, blended), and the pending ones are kept
 //! as whole vectors: appending them to memory at their count and reading
 //! 8 back from the front made every read wait for two stores to reach the
-//! cache, 3–7 % of a dense mesh's Phong frame.
+//! cache, 3–7 % of a dense mesh's Phong frame. A triangle whose box is one
+//! or two blocks wide and at most 64 pixels in blocks does not pend row by
+//! row: its passes are gathered as the bits of one `u64` and packed after
+//! its last row (`gather.rs`). Phong's large triangles' spans run in a
+//! function of their own (`Simd::apart`), so that the small triangles'
+//! walk, compiled beside them, does not take their loop's registers.
 //!
 //! Other shaders evaluate their planes once per row (only the depth plane
 //! for Phong, whose eight planes would mostly be evaluated for rows whose
@@ -72,12 +77,14 @@
 //! This file holds a band's storage, its start and its finish (colours and
 //! counts out to the image); `walk.rs` a triangle's walk over the band
 //! (rows, blocks, spans, the depth test, flat's and Gouraud's blocks);
-//! `queue.rs` Phong's queues.
+//! `gather.rs` Phong's small triangles' passes in one mask; `queue.rs`
+//! Phong's queues.
 
 // Loops over the three edges, channels and planes index several arrays at once.
 #![allow(clippy::needless_range_loop)]
 
 mod depth_buffer;
+mod gather;
 mod pairs;
 mod queue;
 mod walk;

@@ -2,12 +2,13 @@
 //! 8 pixels or in spans, the depth test, and each block's colours (flat,
 //! Gouraud) or its place in Phong's queue (`queue.rs`).
 
+use super::gather::gathers;
 use super::pairs::{fill_span, inside};
 use super::{Band, Pass};
 use crate::raster::tiled::setup::{plane_count, Plane, Triangle, Walk, GOURAUD_OF_ALL};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
 use crate::shade::{FlatShader, GouraudShader, Shader, MAX_ATTRS};
-use crate::simd::{Lanes, Simd, Vf, Vi};
+use crate::simd::{Apart, Lanes, Simd, Vf, Vi};
 
 impl Band {
     /// Draws one triangle's rows within this band (rows `band_y0..band_y1`),
@@ -59,6 +60,18 @@ impl Band {
         let plain = t.once == 0 && pass == Pass::Shade;
         match (t.walk, plain) {
             (Walk::Blocks, true) => self.walk_blocks(s, &fill, rows, band_y0),
+            // Phong's spans in a function of their own: their loop keeps
+            // its registers whatever the blocks' walk holds (BENCHMARKS.md,
+            // "Phong's spans apart; a small triangle's passes in one mask").
+            (Walk::Spans, true) if Sh::DEFERRED && !Sh::ALL_METHODS => {
+                let spans = PhongSpans {
+                    band: self,
+                    fill: &fill,
+                    rows,
+                    band_y0,
+                };
+                s.apart(spans)
+            }
             (Walk::Spans, true) => self.walk_spans::<S, Sh, true>(s, &fill, rows, band_y0),
             (_, false) => self.walk_spans::<S, Sh, false>(s, &fill, rows, band_y0),
         }
@@ -125,8 +138,11 @@ impl Band {
         right_start: Vi<S>,
         (block_step, row_step, right_step): ([Vi<S>; 3], [Vi<S>; 3], Vi<S>),
     ) {
+        if gathers::<Sh>(blocks, rows.len()) {
+            let steps = (block_step, row_step, right_step);
+            return self.walk_gathered(s, f, rows, band_y0, blocks, row_e, right_start, steps);
+        }
         let first_block = f.t.x0 & !7;
-        let minus_one = Vi::splat(s, -1);
         // Counted here, in a register: adding to `self.fragments` per block
         // chained every block to the last one's store.
         let mut fragments = 0;
@@ -135,11 +151,7 @@ impl Band {
             let (mut e, mut right) = (row_e, right_start);
             let mut row = None;
             for block in 0..blocks {
-                let inside = (e[0] | e[1] | e[2] | right).gt(minus_one);
-                for i in 0..3 {
-                    e[i] = e[i] + block_step[i];
-                }
-                right = right - right_step;
+                let inside = inside_then_step(&mut e, &mut right, &block_step, right_step);
                 if inside.mask_bits() != 0 {
                     let x = first_block + block * 8;
                     let row = *row.get_or_insert_with(|| f.row(y));
@@ -332,6 +344,24 @@ impl Band {
     }
 }
 
+/// A deferred shader's spans ([`Band::walk_spans`]), run apart from the
+/// rest of the band ([`Simd::apart`]).
+struct PhongSpans<'a, 'f, S: Simd, Sh: Shader> {
+    band: &'a mut Band,
+    fill: &'a Fill<'f, S, Sh>,
+    rows: std::ops::Range<i32>,
+    band_y0: u32,
+}
+
+impl<S: Simd, Sh: Shader> Apart<S> for PhongSpans<'_, '_, S, Sh> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self, s: S) {
+        let (rows, y0) = (self.rows, self.band_y0);
+        self.band.walk_spans::<S, Sh, true>(s, self.fill, rows, y0);
+    }
+}
+
 /// One row of a triangle: its distance from the triangle's first row, and
 /// planes' values at the triangle's first column: the depth plane's always,
 /// the others too unless the shader is deferred. A deferred shader (Phong,
@@ -367,7 +397,7 @@ pub(super) struct Fill<'a, S: Simd, Sh: Shader> {
 impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
     /// Row `y` (see [`Row`]).
     #[inline(always)]
-    fn row(&self, y: i32) -> Row {
+    pub(super) fn row(&self, y: i32) -> Row {
         if !Sh::DEFERRED {
             return self.row_all(y);
         }
@@ -410,11 +440,29 @@ impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
     }
 }
 
+/// The lanes of a block inside the triangle (its three edge functions `e`
+/// and the box's right end `right` all at least 0); then `e` and `right`
+/// stepped to the next block of the row.
+#[inline(always)]
+pub(super) fn inside_then_step<S: Simd>(
+    e: &mut [Vi<S>; 3],
+    right: &mut Vi<S>,
+    block_step: &[Vi<S>; 3],
+    right_step: Vi<S>,
+) -> Vi<S> {
+    let inside = (e[0] | e[1] | e[2] | *right).gt(Vi::splat(right.1, -1));
+    for i in 0..3 {
+        e[i] = e[i] + block_step[i];
+    }
+    *right = *right - right_step;
+    inside
+}
+
 /// The depth test of the lanes of `inside` in a block of `row` whose
 /// columns relative to the triangle's first are `x` ([`Fill::column`]):
 /// the lanes that passed, whose depth is now stored.
 #[inline(always)]
-fn depth_test<S: Simd, Sh: Shader>(
+pub(super) fn depth_test<S: Simd, Sh: Shader>(
     s: S,
     f: &Fill<'_, S, Sh>,
     inside: Vi<S>,
