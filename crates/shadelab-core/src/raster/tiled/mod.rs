@@ -91,7 +91,7 @@ use std::sync::{Mutex, MutexGuard};
 
 use rayon::prelude::*;
 
-use self::band::{band_rows, Band, Colors, Depths, Pass};
+use self::band::{band_rows, Band, Colors, Depths, Pass, RowWrite};
 
 use self::chunk::{Chunk, Frame, SetupKernel};
 pub(crate) use self::setup::BAND_ROWS;
@@ -172,15 +172,6 @@ enum Output<'a> {
     },
     /// Coverage counts.
     Counts(&'a mut [u32]),
-}
-
-/// How a band writes image rows out ([`Band::finish`]).
-#[derive(Debug, Clone, Copy)]
-struct RowWrite {
-    /// The background colour, packed as in the band.
-    background: i32,
-    /// Whether the rows are written with streaming stores ([`streams`]).
-    stream: bool,
 }
 
 /// One band's work, compiled per SIMD level. With [`AllMethods`] a bin holds
@@ -266,15 +257,10 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         }
         self.band.flush(simd, self.shader, &lanes);
         match self.output {
-            Output::Image { rows, write } => self.band.finish(
-                simd,
-                rows,
-                o.width,
-                write.background,
-                write.stream,
-                Colors::Shader,
-                Depths::Clear,
-            ),
+            Output::Image { rows, write } => {
+                let (colors, depths) = (Colors::Shader, Depths::Clear);
+                self.band.finish(simd, rows, o.width, write, colors, depths)
+            }
             Output::Methods { rows, write, .. } => {
                 let [flat, gouraud, phong] = rows;
                 // Phong's read last: it clears the depths the others read.
@@ -284,8 +270,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                     (gouraud, Colors::Gouraud, Depths::Keep),
                     (phong, Colors::Shader, Depths::Clear),
                 ] {
-                    let (background, stream) = (write.background, write.stream);
-                    band.finish(simd, out, o.width, background, stream, colors, depths);
+                    band.finish(simd, out, o.width, write, colors, depths);
                 }
             }
             Output::Counts(counts) => self.band.finish_counts(counts, o.width),

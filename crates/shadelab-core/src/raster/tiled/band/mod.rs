@@ -183,6 +183,16 @@ struct Pending {
     len: usize,
 }
 
+/// How [`Band::finish`] writes image rows out.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RowWrite {
+    /// The background colour, packed as in the band.
+    pub background: i32,
+    /// Whether the rows are written with streaming stores (the frame's
+    /// choice: `streams` in `tiled/mod.rs`).
+    pub stream: bool,
+}
+
 /// Which of a band's colour buffers [`Band::finish`] reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Colors {
@@ -287,27 +297,25 @@ impl Band {
     }
 
     /// Copies the finished band's `colors` into its rows of the image,
-    /// `out`, rows of `width` pixels (the background where the depth is
-    /// still 1, or outside the drawn columns), with streaming stores if
-    /// `stream` (the frame's choice: `streams` in `tiled/mod.rs`), and
-    /// counts the pixels drawn.
+    /// `out`, rows of `width` pixels (`write.background` where the depth
+    /// is still 1, or outside the drawn columns; streaming stores if
+    /// `write.stream`), and counts the pixels drawn.
     ///
     /// With [`Depths::Clear`] (the band's last read) each row's drawn
     /// columns, the only depths a triangle may write, are set back to 1
     /// right after the row is read, while they are in the first-level
     /// cache, and the next band skips its clearing pass.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn finish<S: Simd>(
         &mut self,
         s: S,
         out: &mut [crate::color::Rgb8],
         width: u32,
-        background: i32,
-        stream: bool,
+        write: RowWrite,
         colors: Colors,
         depths: Depths,
     ) {
+        let RowWrite { background, stream } = write;
         let clear = depths == Depths::Clear;
         let (color, color_at) = match colors {
             Colors::Shader => (&self.color, self.color_at),
@@ -520,15 +528,11 @@ mod tests {
             let len = (self.width * rows) as usize;
             let mut out = vec![Rgb8::new(1, 2, 3); len + 64];
             let image = &mut out[self.offset..self.offset + len];
-            band.finish(
-                s,
-                image,
-                self.width,
-                BACKGROUND,
-                self.stream,
-                Colors::Shader,
-                Depths::Clear,
-            );
+            let write = RowWrite {
+                background: BACKGROUND,
+                stream: self.stream,
+            };
+            band.finish(s, image, self.width, write, Colors::Shader, Depths::Clear);
             (image.to_vec(), band.covered, want, covered)
         }
     }
