@@ -37,7 +37,7 @@
 //! use, so the values do not depend on the packing. The interpolated
 //! fragments go into a second queue and are lit 64 at a time (four groups
 //! of 16 lanes lit together, so that their long dependency chains overlap;
-//! 16 in WebAssembly), and
+//! 16 in WebAssembly; a function of its own on x86, see `queue.rs`), and
 //! their colours written back in the order they were queued (a later
 //! fragment of the same pixel is written later, as without the queues; the
 //! position queue is emptied at the end of each triangle; eight queued
