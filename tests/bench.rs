@@ -54,6 +54,16 @@ fn json_has_one_row_per_combination() {
     // Measured: some hundreds of MHz at the very least, on anything that runs this.
     let clock = json["machine"]["clock_mhz"].as_f64().unwrap();
     assert!((100.0..20_000.0).contains(&clock), "{clock}");
+    // A cache line's round trip between two threads: measured where there
+    // are two cores (under 20 ms, a sample's limit), `null` with one.
+    let cores = json["machine"]["cores"].as_u64().unwrap();
+    match json["machine"]["round_trip_ns"].as_f64() {
+        Some(ns) => assert!(
+            cores >= 2 && ns > 0.0 && ns < 20e6,
+            "{ns} ns, {cores} cores"
+        ),
+        None => assert!(cores < 2 && json["machine"]["round_trip_ns"].is_null()),
+    }
     assert_eq!(json["warmup"].as_u64(), Some(0));
     assert_eq!(json["warmup_s"].as_f64(), Some(0.0));
     let rows = json["rows"].as_array().unwrap();

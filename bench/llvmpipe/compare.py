@@ -93,6 +93,11 @@ def parse_exports(path):
     return exports
 
 
+# A round trip above this (ns) means the two cores do not share a cache:
+# about 50 ns beside each other, 400 ns or more apart (src/bench/cores.rs).
+FAR_NS = 200
+
+
 def shadelab_times(binary, model, size, shading, frames, warmup, warmup_time, models_dir):
     """Rows of `shadelab bench --json` for 1 and 2 threads, and its machine."""
     command = [
@@ -193,7 +198,7 @@ def main():
                 continue
             images = [args.images / f"{stem}-{shading}-llvmpipe-{m.short.split()[1]}.png" for m in mesas]
             gl_rounds = [[] for _ in mesas]
-            ours_rounds = []
+            ours_rounds, trips = [], []
             for _ in range(max(args.rounds, 1)):
                 for mesa, rounds, image in zip(mesas, gl_rounds, images):
                     rounds.append(
@@ -208,6 +213,7 @@ def main():
                     args.models_dir,
                 )
                 ours_rounds.append(ours)
+                trips.append(machine.get("round_trip_ns"))
             ours_pixels = np.asarray(Image.open(ours_png).convert("RGB")).astype(int)
             background = np.array(scene.info["background"], dtype=np.uint8)
             differ, drawn = [], []
@@ -231,6 +237,7 @@ def main():
                     "ours_1": median(1, "median_ms"),
                     "ours_2": median(2, "median_ms"),
                     "ours_rounds": [o[2]["median_ms"] for o in ours_rounds],
+                    "round_trips": trips,
                     "covered": ours_rounds[0][2]["covered_pixels"],
                     "differ": differ,
                     "drawn": drawn,
@@ -261,8 +268,15 @@ def round_by_round(p, newest, rows):
         " after the other."
     )
     p("")
-    p("| model | size | shading | the rounds' ratios | median | rounds at 3× or more |")
-    p("|---|---|---|---|---:|---:|")
+    p(
+        "The rounds' round trips are those `shadelab bench` measured as it started (a cache line between"
+        " two threads, `src/bench/cores.rs`): about 50 ns where the host ran the two virtual cores"
+        " beside each other, 400–650 ns where it put them apart, microseconds where they took turns"
+        " on one core."
+    )
+    p("")
+    p("| model | size | shading | the rounds' ratios | median | rounds at 3× or more | the rounds' round trips, ns |")
+    p("|---|---|---|---|---:|---:|---|")
     met = 0
     for r in rows:
         ratios = [gl / ours for gl, ours in zip(r["gl_rounds"][-1], r["ours_rounds"])]
@@ -270,11 +284,31 @@ def round_by_round(p, newest, rows):
         met += median >= 3
         p(
             f"| {r['model']} | {r['size']} | {r['shading']} | {' '.join(f'{x:.2f}' for x in ratios)} "
-            f"| {median:.2f}× | {sum(x >= 3 for x in ratios)} of {len(ratios)} |"
+            f"| {median:.2f}× | {sum(x >= 3 for x in ratios)} of {len(ratios)} "
+            f"| {' '.join(trip_text(t) for t in r['round_trips'])} |"
         )
     p("")
     p(f"Rows whose median round is at 3× or more: {met} of {len(rows)}.")
     p("")
+
+
+def trip_text(ns):
+    """A round trip in ns for the tables ("–" where none was measured)."""
+    return "–" if ns is None else f"{ns:.0f}"
+
+
+def round_trips_line(rows):
+    """What the host did with the two cores over the run, from the round
+    trips each shadelab call measured."""
+    trips = [t for r in rows for t in r["round_trips"] if t is not None]
+    if not trips:
+        return "No round trip between cores was measured (one core)."
+    far = sum(t > FAR_NS for t in trips)
+    return (
+        f"A cache line's round trip between two cores, measured as each of the {len(trips)} shadelab calls"
+        f" started: {min(trips):.0f}–{max(trips):.0f} ns, median {statistics.median(trips):.0f};"
+        f" above {FAR_NS} ns (the host running the two virtual cores apart) in {far} of them."
+    )
 
 
 def report(args, mesas, rows, machine, started, load_before, load_after):
@@ -283,6 +317,7 @@ def report(args, mesas, rows, machine, started, load_before, load_after):
     newest = mesas[-1]
     p(f"Measured {started} on {cpu_name()}, {os.cpu_count()} cores;")
     p(f"load average (1, 5, 15 min) {' '.join(load_before)} before, {' '.join(load_after)} after.")
+    p(round_trips_line(rows))
     for m in mesas:
         p(f"{m.name}: `{m.renderer}`, OpenGL {m.version}, LP_NUM_THREADS={m.threads}.")
     p(

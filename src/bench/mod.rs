@@ -29,6 +29,7 @@ use shadelab_core::{Image, Rasterizer, RenderOptions, Renderer, Scene, Shading, 
 use crate::cli::whole;
 use crate::{input_error, output_error, Failure};
 
+mod cores;
 mod export;
 mod report;
 mod scene;
@@ -234,8 +235,17 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
         let mut heading = || -> std::io::Result<()> {
             writeln!(
                 out,
-                "shadelab bench: {} ({} cores, clock {:.0} MHz measured), tiled rasterizer SIMD {}; median of up to {} frames after {} warm-up frames and at least {} s of them",
-                machine.cpu, machine.cores, machine.clock_mhz, machine.simd, args.frames, args.warmup, args.warmup_time
+                "shadelab bench: {} ({} cores, clock {:.0} MHz measured{}), tiled rasterizer SIMD {}; median of up to {} frames after {} warm-up frames and at least {} s of them",
+                machine.cpu,
+                machine.cores,
+                machine.clock_mhz,
+                machine
+                    .round_trip_ns
+                    .map_or_else(String::new, |ns| format!(", a cache line's round trip between two cores {ns:.0} ns")),
+                machine.simd,
+                args.frames,
+                args.warmup,
+                args.warmup_time
             )?;
             for m in &models {
                 writeln!(

@@ -15,6 +15,9 @@ pub(super) struct Machine {
     pub(super) simd: &'static str,
     /// The core clock while running, measured.
     pub(super) clock_mhz: f64,
+    /// A cache line's round trip between two threads, in nanoseconds
+    /// (`None` with one core): see `cores.rs`.
+    pub(super) round_trip_ns: Option<f64>,
 }
 
 impl Machine {
@@ -34,6 +37,7 @@ impl Machine {
             cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
             simd: simd.name(),
             clock_mhz: measure_clock_mhz(),
+            round_trip_ns: super::cores::round_trip_ns(),
         }
     }
 }
@@ -89,11 +93,14 @@ pub(super) fn json(machine: &Machine, args: &BenchArgs, rows: &[Row]) -> String 
     let mut s = String::new();
     let _ = write!(
         s,
-        "{{\"machine\":{{\"cpu\":{},\"cores\":{},\"simd\":{},\"clock_mhz\":{:.0}}},\"warmup\":{},\"warmup_s\":{},\"frames\":{},\"rows\":[",
+        "{{\"machine\":{{\"cpu\":{},\"cores\":{},\"simd\":{},\"clock_mhz\":{:.0},\"round_trip_ns\":{}}},\"warmup\":{},\"warmup_s\":{},\"frames\":{},\"rows\":[",
         quote(&machine.cpu),
         machine.cores,
         quote(machine.simd),
         machine.clock_mhz,
+        machine
+            .round_trip_ns
+            .map_or_else(|| "null".to_string(), |ns| format!("{ns:.0}")),
         args.warmup,
         args.warmup_time,
         args.frames

@@ -12,7 +12,7 @@ use crate::raster::{
 };
 use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::{PhongShader, MAX_ATTRS};
-use crate::simd::{dispatch, prefetch, Kernel, Simd, SimdLevel, Vf};
+use crate::simd::{dispatch, prefetch, Kernel, Simd, SimdLevel, Vf, WritePrefetch};
 
 /// The triangles of one chunk that touch one band, in submission order,
 /// copied here so that the band reads them as one contiguous stream.
@@ -104,6 +104,8 @@ pub(super) struct Frame<'a> {
     pub(super) centroids: &'a [Vec3],
     pub(super) phong: &'a PhongShader,
     pub(super) simd: SimdLevel,
+    /// How setup asks for the lines of the bins it is about to write.
+    pub(super) write_prefetch: WritePrefetch,
     pub(super) lit: &'a [[f32; 3]],
     pub(super) lit_back: &'a [[f32; 3]],
     pub(super) bands: usize,
@@ -394,12 +396,14 @@ impl<S: Simd, const A: usize> Setup<'_, '_, S, A> {
             // triangles mostly share bands, so the lines are there by then.
             // The meshes' 1920×1080 rows: medians 2–10 % lower
             // (BENCHMARKS.md, "The same AMD EPYC: d380fe5, the bins
-            // prefetched").
+            // prefetched"). Taken for writing: the last frame's bands, on
+            // both threads, read these lines (`WritePrefetch`).
+            let ahead = self.frame.write_prefetch;
             if let Some(next) = bin.triangles.spare_capacity_mut().get(PREFETCH_TRIANGLES) {
-                prefetch(next);
+                ahead.line(next);
             }
             if let Some(next) = bin.planes.spare_capacity_mut().get(PREFETCH_PLANES) {
-                prefetch(next);
+                ahead.line(next);
             }
             if A == ALL_ATTRS {
                 bin.corners.push(*corners);

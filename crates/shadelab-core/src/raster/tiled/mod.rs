@@ -103,7 +103,7 @@ use crate::image::Image;
 use crate::raster::{PolygonSource, Projected, Rasterize, VertexStage};
 use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::{AllMethods, FlatShader, GouraudShader, Lighting, PhongShader, Shader};
-use crate::simd::{dispatch, Kernel, Simd, SimdLevel};
+use crate::simd::{dispatch, Kernel, Simd, SimdLevel, WritePrefetch};
 
 /// Setup chunks per thread. A polygon's cost varies tenfold (a back face
 /// stops at facing, a front face is set up and binned) and meshes list
@@ -660,6 +660,7 @@ impl TiledRasterizer {
             centroids,
             phong: &self.phong,
             simd: self.simd.without_avx512(),
+            write_prefetch: WritePrefetch::detect(),
             lit: &self.lit,
             lit_back: &self.lit_back,
             bands: options.height.div_ceil(BAND_ROWS) as usize,
