@@ -350,3 +350,17 @@ fn apart_runs_the_work_with_the_callers_backend() {
         assert_eq!(bits(apart), bits(inline), "{level:?}");
     }
 }
+
+/// Prefetching for writing runs on this processor, however it was detected
+/// (a `PREFETCHW` it lacked would stop the test with an illegal
+/// instruction), writes nothing, and the same way is found every time.
+#[test]
+fn prefetching_for_writing_changes_no_memory() {
+    let ahead = WritePrefetch::detect();
+    assert_eq!(ahead, WritePrefetch::detect());
+    let lines: Vec<u64> = (0..1024).collect();
+    for value in &lines {
+        ahead.line(value);
+    }
+    assert!(lines.iter().copied().eq(0..1024));
+}
