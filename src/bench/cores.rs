@@ -31,9 +31,10 @@ const SAMPLE_LIMIT: Duration = Duration::from_millis(20);
 struct Line(AtomicU64);
 
 /// The median time, in nanoseconds, for one value to go from this thread
-/// to another and back through one cache line, or `None` with one core.
-pub(super) fn round_trip_ns() -> Option<f64> {
-    if std::thread::available_parallelism().map_or(1, |n| n.get()) < 2 {
+/// to another and back through one cache line, or `None` with fewer than
+/// two `cores`.
+pub(super) fn round_trip_ns(cores: usize) -> Option<f64> {
+    if cores < 2 {
         return None;
     }
     let mut samples: Vec<f64> = (0..SAMPLES).filter_map(|_| sample()).collect();
@@ -48,19 +49,17 @@ fn sample() -> Option<f64> {
     // The value that tells the other thread to stop.
     const STOP: u64 = u64::MAX;
     std::thread::scope(|scope| {
-        scope.spawn(|| {
-            let mut seen = 0;
-            loop {
-                let value = line.0.load(Ordering::Acquire);
-                if value == STOP {
-                    return;
-                }
-                if value != seen && value % 2 == 1 {
-                    seen = value + 1;
-                    line.0.store(seen, Ordering::Release);
-                }
-                std::hint::spin_loop();
+        scope.spawn(|| loop {
+            // An odd value is a new question (the answer, even, stays until
+            // the next one); `STOP` is odd too, so it is tested first.
+            let value = line.0.load(Ordering::Acquire);
+            if value == STOP {
+                return;
             }
+            if value % 2 == 1 {
+                line.0.store(value + 1, Ordering::Release);
+            }
+            std::hint::spin_loop();
         });
         // The other thread may take a while to start: the first trip is
         // not timed.
@@ -101,7 +100,7 @@ mod tests {
     #[test]
     fn a_round_trip_is_measured_where_there_are_two_cores() {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-        match round_trip_ns() {
+        match round_trip_ns(cores) {
             Some(ns) => {
                 assert!(cores >= 2);
                 assert!(ns > 0.0 && ns < 20e6, "{ns} ns");

@@ -32,12 +32,13 @@ impl Machine {
                     .map(|(_, name)| name.trim().to_string())
             })
             .unwrap_or_else(|| std::env::consts::ARCH.to_string());
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
         Machine {
             cpu,
-            cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            cores,
             simd: simd.name(),
             clock_mhz: measure_clock_mhz(),
-            round_trip_ns: super::cores::round_trip_ns(),
+            round_trip_ns: super::cores::round_trip_ns(cores),
         }
     }
 }
