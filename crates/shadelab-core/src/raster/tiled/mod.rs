@@ -27,6 +27,9 @@
 //!    `band/`), looking up flat triangles' colours in their chunk's, then
 //!    writes its rows of the image.
 //!
+//! The threads share setup's chunks and the bands by their estimated cost
+//! (`order.rs`), so that they end each phase together.
+//!
 //! What must hold, and why it is built this way:
 //!
 //! * **The same pixels as the scanline reference.** Every polygon goes
@@ -84,6 +87,7 @@
 
 mod band;
 mod chunk;
+mod order;
 mod setup;
 mod vertices;
 
@@ -94,6 +98,7 @@ use rayon::prelude::*;
 use self::band::{band_rows, Band, Colors, Depths, Pass, RowWrite};
 
 use self::chunk::{Chunk, Frame, SetupKernel};
+use self::order::{band_cost, by_cost, chunk_cost, Borrows, Job, Jobs};
 pub(crate) use self::setup::BAND_ROWS;
 use self::setup::{plane_count, PLANES};
 use self::vertices::{light_vertices, VertexTable};
@@ -152,6 +157,30 @@ pub(crate) struct TiledRasterizer {
     /// One band's working buffers per thread: each thread draws its bands
     /// one after the other in the same buffers, which stay in its cache.
     bands: Vec<Mutex<Band>>,
+    /// The frame's setup chunks and bands, as shared between threads
+    /// (`order.rs`).
+    setup_jobs: Jobs<SetupChunk>,
+    band_jobs: Jobs<BandRows>,
+}
+
+/// A setup job's work: its chunk.
+struct SetupChunk;
+
+impl Borrows for SetupChunk {
+    type At<'a> = &'a mut Chunk;
+}
+
+/// A band job's work: its rows of up to three images (flat's, Gouraud's
+/// and Phong's; one image's are the first, the others empty).
+struct BandRows;
+
+impl Borrows for BandRows {
+    type At<'a> = [&'a mut [Rgb8]; 3];
+}
+
+/// A band's counts: fragments shaded, pixels covered.
+fn add_counts(a: (u64, u64), b: (u64, u64)) -> (u64, u64) {
+    (a.0 + b.0, a.1 + b.1)
 }
 
 /// Where a band's result goes.
@@ -368,6 +397,8 @@ impl TiledRasterizer {
             phong: PhongShader::default(),
             evaluations: (0, 0),
             bands: Vec::new(),
+            setup_jobs: Jobs::default(),
+            band_jobs: Jobs::default(),
         }
     }
 
@@ -390,26 +421,18 @@ impl Rasterize for TiledRasterizer {
         let method = Some(options.shading);
         let (mut stats, _) = self.geometry(vertices, scene, options, lighting, method, &all_rows);
         let width = options.width as usize;
+        let size = (options.width, options.height);
+        let mut jobs = self.band_jobs.take();
         let (chunks, simd) = (self.frame_chunks(), self.simd);
         let background = packed(options.background);
         let stream = streams(options.width, options.height, scene.mesh.polygon_count());
         let phong = &self.phong;
         let scratch = &self.bands;
-        let bands = image
-            .pixels_mut()
-            .par_chunks_mut(width * BAND_ROWS as usize)
-            // Each band its own job, so that a thread out of work can take
-            // any one band left: rayon's default split leaves runs of
-            // several bands that one thread must draw alone while the
-            // other waits at the end of the frame (BENCHMARKS.md, "bands one
-            // job each").
-            .with_max_len(1)
-            .enumerate();
-        let totals = bands.map(|(index, pixels)| {
+        let draw = |index: usize, [rows, ..]: [&mut [Rgb8]; 3]| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
             let output = Output::Image {
-                rows: pixels,
+                rows,
                 write: RowWrite { background, stream },
             };
             match options.shading {
@@ -423,8 +446,15 @@ impl Rasterize for TiledRasterizer {
                 },
             }
             (band.fragments, band.covered)
-        });
-        let (fragments, covered) = totals.reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+        };
+        // Each band its own job, the bands shared by cost (`order.rs`).
+        let bands = image.pixels_mut().chunks_mut(width * BAND_ROWS as usize);
+        jobs.extend(bands.enumerate().map(|(index, rows)| {
+            let cost = band_cost(chunks, index, size, method);
+            Job::new(index, cost, [rows, Default::default(), Default::default()])
+        }));
+        let (fragments, covered) = by_cost(&mut jobs, &draw, &add_counts);
+        self.band_jobs.keep(jobs);
         stats.fragments_shaded += fragments;
         stats.covered_pixels += covered;
         if options.shading == Shading::Phong {
@@ -487,6 +517,9 @@ impl TiledRasterizer {
         images: [&mut Image; 3],
     ) -> [RenderStats; 3] {
         let (stats, polygons) = self.geometry(vertices, scene, options, lighting, None, rows);
+        let first_band = (rows.start / BAND_ROWS) as usize;
+        let size = (options.width, options.height);
+        let mut jobs = self.band_jobs.take();
         let frame = self.frame(scene, options, None, polygons.centroids(), rows);
         let sources = (&frame, polygons.projected());
         let width = options.width as usize;
@@ -495,25 +528,14 @@ impl TiledRasterizer {
         let stream = streams(options.width, options.height, scene.mesh.polygon_count());
         let phong = &self.phong;
         let scratch = &self.bands;
-        let band_len = width * BAND_ROWS as usize;
-        let first_band = (rows.start / BAND_ROWS) as usize;
         let [flat, gouraud, phong_image] = images;
-        let bands = flat
-            .pixels_mut()
-            .par_chunks_mut(band_len)
-            .zip(gouraud.pixels_mut().par_chunks_mut(band_len))
-            .zip(phong_image.pixels_mut().par_chunks_mut(band_len))
-            // Each band its own job, as in `render`.
-            .with_max_len(1)
-            .enumerate();
         // One walk of each triangle: the three methods share coverage and
         // depth, so the fragments and pixels drawn are the same for each.
-        let totals = bands.map(|(k, ((f, g), p))| {
-            let index = first_band + k;
+        let draw = |index: usize, rows: [&mut [Rgb8]; 3]| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
             let output = Output::Methods {
-                rows: [f, g, p],
+                rows,
                 write: RowWrite { background, stream },
                 sources,
             };
@@ -532,8 +554,20 @@ impl TiledRasterizer {
                 ),
             }
             (band.fragments, band.covered)
-        });
-        let (fragments, covered) = totals.reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+        };
+        // Each band its own job, shared by cost, as in `render`.
+        let band_len = width * BAND_ROWS as usize;
+        let bands = flat
+            .pixels_mut()
+            .chunks_mut(band_len)
+            .zip(gouraud.pixels_mut().chunks_mut(band_len))
+            .zip(phong_image.pixels_mut().chunks_mut(band_len));
+        jobs.extend(bands.enumerate().map(|(k, ((f, g), p))| {
+            let index = first_band + k;
+            Job::new(index, band_cost(chunks, index, size, None), [f, g, p])
+        }));
+        let (fragments, covered) = by_cost(&mut jobs, &draw, &add_counts);
+        self.band_jobs.keep(jobs);
         let (flat_evaluations, vertex_evaluations) = self.evaluations;
         std::array::from_fn(|k| {
             let lighting_evaluations = match k {
@@ -598,24 +632,31 @@ impl TiledRasterizer {
         // Setup fills the chunks while reading the rest of `self` (the
         // frame's attribute sources): taken out meanwhile, no copy.
         let mut chunks = std::mem::take(&mut self.chunks);
-        let frame = self.frame(scene, options, method, polygons.centroids(), rows);
         let count = polygons.count();
-        chunks[..chunk_count]
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(i, chunk)| {
-                let start = count * i / chunk_count;
-                let end = count * (i + 1) / chunk_count;
-                dispatch(
-                    frame.simd,
-                    SetupKernel {
-                        chunk,
-                        frame: &frame,
-                        polygons: &polygons,
-                        faces: start..end,
-                    },
-                );
-            });
+        let faces = |i: usize| count * i / chunk_count..count * (i + 1) / chunk_count;
+        let mut jobs = self.setup_jobs.take();
+        let frame = self.frame(scene, options, method, polygons.centroids(), rows);
+        // Shared by cost, from the chunks' last frame (`order.rs`).
+        jobs.extend(
+            chunks[..chunk_count]
+                .iter_mut()
+                .enumerate()
+                .map(|(i, chunk)| Job::new(i, chunk_cost(chunk, faces(i).len()), chunk)),
+        );
+        let set_up = |i: usize, chunk: &mut Chunk| {
+            let (frame, polygons, faces) = (&frame, &polygons, faces(i));
+            dispatch(
+                frame.simd,
+                SetupKernel {
+                    chunk,
+                    frame,
+                    polygons,
+                    faces,
+                },
+            );
+        };
+        by_cost(&mut jobs, &set_up, &|(), ()| ());
+        self.setup_jobs.keep(jobs);
         self.chunks = chunks;
 
         let mut stats = RenderStats {

@@ -1,0 +1,382 @@
+//! How a frame's parallel work is shared between threads: setup's chunks
+//! and the bands, by their estimated cost.
+//!
+//! Design note. Threads end a phase together only if they are given about
+//! the same work, and jobs differ manyfold. Bands: a dense mesh's middle
+//! rows against the empty rows above and below it (the dragon at
+//! 1920×1080, Phong, one thread: 2–191 µs a band, 6.1 ms in all). Chunks:
+//! a back face stops at facing, a front face is set up and binned, and
+//! meshes list their visible faces unevenly. Rayon's halving of the jobs by
+//! count ended the dragon's bands with one thread waiting for the other
+//! about 120 µs a frame; by then that thread had often gone to sleep, and
+//! waking it cost about 50 µs more. So ([`by_cost`]):
+//!
+//! * **The cheapest jobs are kept for last**, a tail of about an eighth of
+//!   the estimated cost, taken costliest first from one queue by whichever
+//!   thread is free: what the estimates got wrong is made up with small
+//!   jobs, and the threads end within a few microseconds of each other.
+//! * **The others are cut into one run of neighbouring jobs per thread**,
+//!   of about the same estimated cost, each done in order. That keeps
+//!   what halving by count did well: the bins a thread's setup writes for a
+//!   part of the image are mostly read by its own bands. All the jobs taken
+//!   costliest first from one queue ended the dragon's bands together too,
+//!   but made the bunny's 1920×1080 Phong 2–3 % slower with the two cores
+//!   apart (BENCHMARKS.md, "Bands and chunks shared by cost").
+//!
+//! A band's cost is estimated from its bins: its triangles, and the pixels
+//! of the columns they span ([`band_cost`]). A chunk's, from what its
+//! polygons did in the last frame: how many were set up ([`chunk_cost`]);
+//! a first frame's chunks are shared by count.
+//!
+//! The order changes no pixel: a chunk bins into bins of its own, and a
+//! band is drawn alone, reading the chunks' bins in submission order.
+
+use std::cmp::Reverse;
+use std::sync::Mutex;
+
+use rayon::prelude::*;
+
+use super::chunk::Chunk;
+use super::setup::BAND_ROWS;
+use crate::scene::Shading;
+
+/// A piece of a phase's work: its index (a chunk's or a band's), its
+/// estimated cost and what it writes (`work`).
+pub(super) struct Job<T> {
+    pub(super) index: usize,
+    cost: u64,
+    pub(super) work: T,
+}
+
+impl<T> Job<T> {
+    pub(super) fn new(index: usize, cost: u64, work: T) -> Option<Job<T>> {
+        Some(Job { index, cost, work })
+    }
+}
+
+/// A kind of job's work, which borrows a frame's buffers (`At<'a>`).
+pub(super) trait Borrows {
+    type At<'a>: Send;
+}
+
+/// A list of jobs kept from frame to frame for its allocation (the tiled
+/// rasterizer allocates nothing per frame once warmed up). A job is taken
+/// out of its slot when it is done.
+pub(super) struct Jobs<B: Borrows>(Vec<Option<Job<B::At<'static>>>>);
+
+impl<B: Borrows> Default for Jobs<B> {
+    fn default() -> Jobs<B> {
+        Jobs(Vec::new())
+    }
+}
+
+impl<B: Borrows> std::fmt::Debug for Jobs<B> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Jobs(capacity {})", self.0.capacity())
+    }
+}
+
+impl<B: Borrows> Jobs<B> {
+    /// An empty list, with this one's allocation, for a frame's buffers.
+    pub(super) fn take<'a>(&mut self) -> Vec<Option<Job<B::At<'a>>>> {
+        relend(std::mem::take(&mut self.0))
+    }
+
+    /// Keeps the allocation of a frame's list.
+    pub(super) fn keep(&mut self, jobs: Vec<Option<Job<B::At<'_>>>>) {
+        self.0 = relend(jobs);
+    }
+}
+
+/// `jobs`, emptied, as a list for work of another lifetime, in the same
+/// allocation: collected in place (the two types have the same layout),
+/// with no job in it to outlive what it borrowed.
+fn relend<T, U>(mut jobs: Vec<Option<Job<T>>>) -> Vec<Option<Job<U>>> {
+    jobs.clear();
+    jobs.into_iter().map(|_| unreachable!()).collect()
+}
+
+/// Does `jobs` (in index order; each slot emptied as its job is done) on
+/// the threads of the current pool. `run` does job `index` with its work
+/// and returns its counts; `add` adds them up.
+///
+/// The cheapest jobs, about a [`TAIL_SHARE`]th of the estimated cost, are
+/// set apart as the tail. The others are cut into one run of neighbouring
+/// jobs per thread, of about the same estimated cost ([`cut_point`], again
+/// in each part for more than two threads). A thread does its run in
+/// order, then takes jobs of the tail, costliest first, from one queue
+/// until none is left: what the estimates got wrong is made up with cheap
+/// jobs. Rayon halves each run for a thread that has nothing left to do.
+pub(super) fn by_cost<T, R, F, A>(jobs: &mut [Option<Job<T>>], run: &F, add: &A) -> R
+where
+    T: Send,
+    R: Default + Send,
+    F: Fn(usize, T) -> R + Sync,
+    A: Fn(R, R) -> R + Sync,
+{
+    let threads = rayon::current_num_threads();
+    if threads < 2 {
+        // In index order, with no job handed to rayon.
+        let jobs = jobs.iter_mut().filter_map(Option::take);
+        return jobs.fold(R::default(), |counts, job| {
+            add(counts, run(job.index, job.work))
+        });
+    }
+    let runs = set_tail_apart(jobs);
+    let (runs, tail) = jobs.split_at_mut(runs);
+    let cuts = threads.next_power_of_two().trailing_zeros();
+    in_runs(runs, cuts, &Mutex::new(tail.iter_mut()), run, add)
+}
+
+/// The shared tail's queue.
+type Tail<'s, T> = Mutex<std::slice::IterMut<'s, Option<Job<T>>>>;
+
+/// [`by_cost`] of `jobs` cut `cuts` more times, then of the `tail`.
+fn in_runs<T, R, F, A>(
+    jobs: &mut [Option<Job<T>>],
+    cuts: u32,
+    tail: &Tail<'_, T>,
+    run: &F,
+    add: &A,
+) -> R
+where
+    T: Send,
+    R: Default + Send,
+    F: Fn(usize, T) -> R + Sync,
+    A: Fn(R, R) -> R + Sync,
+{
+    if cuts == 0 || jobs.len() < 2 {
+        let mut counts = jobs
+            .par_iter_mut()
+            // Each job on its own, so that a thread out of work can take
+            // any one left.
+            .with_max_len(1)
+            .filter_map(|slot| slot.take())
+            .map(|job| run(job.index, job.work))
+            .reduce(R::default, add);
+        loop {
+            // The lock is held for the taking alone.
+            let slot = tail
+                .lock()
+                .unwrap_or_else(|poisoned| poisoned.into_inner())
+                .next();
+            let Some(job) = slot.and_then(Option::take) else {
+                return counts;
+            };
+            counts = add(counts, run(job.index, job.work));
+        }
+    }
+    let (before, after) = jobs.split_at_mut(cut_point(jobs));
+    let (a, b) = rayon::join(
+        || in_runs(before, cuts - 1, tail, run, add),
+        || in_runs(after, cuts - 1, tail, run, add),
+    );
+    add(a, b)
+}
+
+/// How much of the jobs' estimated cost the tail holds: a
+/// `TAIL_SHARE`th.
+const TAIL_SHARE: u64 = 8;
+
+/// Sets the tail apart (see [`by_cost`]): the cheapest jobs, whose costs
+/// add up to at most a [`TAIL_SHARE`]th of the total, go to the end of
+/// `jobs`, costliest first (ties in index order); the others stay before
+/// them in index order. Returns how many the others are.
+fn set_tail_apart<T>(jobs: &mut [Option<Job<T>>]) -> usize {
+    let total: u64 = jobs.iter().map(cost).sum();
+    // Cheapest first (ties: the later first), then the tail's length.
+    jobs.sort_unstable_by_key(|job| job.as_ref().map(|job| (job.cost, Reverse(job.index))));
+    let (mut tail, mut sum) = (0, 0);
+    while tail < jobs.len() && (sum + cost(&jobs[tail])) * TAIL_SHARE <= total {
+        sum += cost(&jobs[tail]);
+        tail += 1;
+    }
+    // Costliest first: the tail at the end, as it should be.
+    jobs.reverse();
+    let runs = jobs.len() - tail;
+    jobs[..runs].sort_unstable_by_key(|job| job.as_ref().map(|job| job.index));
+    runs
+}
+
+/// A job's estimated cost, at least 1, so that jobs of unknown cost are
+/// shared by count.
+fn cost<T>(job: &Option<Job<T>>) -> u64 {
+    job.as_ref().map_or(0, |job| job.cost).max(1)
+}
+
+/// Where to cut `jobs` (at least two) into two runs: after the job `k`
+/// (1 ≤ `k` < jobs) where the running sum of the costs is closest to half
+/// their total ([`cost`]: jobs of unknown cost are cut in the middle).
+fn cut_point<T>(jobs: &[Option<Job<T>>]) -> usize {
+    let total: u64 = jobs.iter().map(cost).sum();
+    let (mut k, mut sum) = (0, 0);
+    // The first running sum at or past half, or the one before it (ties:
+    // the one before).
+    while k < jobs.len() - 1 && 2 * (sum + cost(&jobs[k])) < total {
+        sum += cost(&jobs[k]);
+        k += 1;
+    }
+    let next = sum + cost(&jobs[k]);
+    let k = if k > 0 && total - 2 * sum <= 2 * next - total {
+        k
+    } else {
+        k + 1
+    };
+    k.min(jobs.len() - 1)
+}
+
+/// The estimated cost of band `index` of an image `width × height`, for
+/// `method` (`None`: the three methods at once), from `chunks`' bins: its
+/// triangles, the pixels of the columns they span, and its rows written.
+pub(super) fn band_cost(
+    chunks: &[Chunk],
+    index: usize,
+    (width, height): (u32, u32),
+    method: Option<Shading>,
+) -> u64 {
+    let (triangles, x0, x1) = chunks.iter().fold((0, i32::MAX, i32::MIN), |acc, chunk| {
+        let bin = &chunk.bins[index];
+        let columns = bin.columns;
+        (
+            acc.0 + bin.triangles.len() as u64,
+            acc.1.min(columns.0),
+            acc.2.max(columns.1),
+        )
+    });
+    let rows = u64::from((height - (index as u32 * BAND_ROWS).min(height)).min(BAND_ROWS));
+    let spanned = (x1 - x0).max(0) as u64 * rows;
+    triangles * TRIANGLE_COST + spanned * pixel_cost(method) + u64::from(width) * rows / 4
+}
+
+/// A triangle's cost in a band, in the units of [`pixel_cost`] (about half
+/// a nanosecond). Fitted to one thread's band times (the bunny, the dragon
+/// and the full-screen quad, 512² and 1920×1080, the three methods): about
+/// 40–60 ns a triangle, and 1–3 µs for a band's 1920 × 16 pixels written.
+const TRIANGLE_COST: u64 = 96;
+
+/// The cost of a pixel of the columns a band's triangles span, against
+/// [`TRIANGLE_COST`]: about 2.4–3.9 ns for Phong (the three methods at
+/// once: Phong's walk), 0.7–1.2 ns for Gouraud and 0.05–0.6 ns for flat.
+fn pixel_cost(method: Option<Shading>) -> u64 {
+    match method {
+        Some(Shading::Flat) => 1,
+        Some(Shading::Gouraud) => 2,
+        Some(Shading::Phong) | None => 6,
+    }
+}
+
+/// The estimated cost of setting up `polygons` polygons in `chunk`, from
+/// its last frame: each polygon faced, and those set up (front faces, and
+/// back faces drawn) [`FRONT_COST`] times more.
+pub(super) fn chunk_cost(chunk: &Chunk, polygons: usize) -> u64 {
+    polygons as u64 + chunk.stats.rasterized * FRONT_COST
+}
+
+/// How much more a polygon set up and binned costs than one culled.
+const FRONT_COST: u64 = 8;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn jobs(costs: &[u64]) -> Vec<Option<Job<usize>>> {
+        costs
+            .iter()
+            .enumerate()
+            .map(|(index, &cost)| Job::new(index, cost, index))
+            .collect()
+    }
+
+    fn cut(costs: &[u64]) -> usize {
+        cut_point(&jobs(costs))
+    }
+
+    #[test]
+    fn cuts_where_the_costs_are_closest() {
+        assert_eq!(cut(&[1, 1]), 1);
+        assert_eq!(cut(&[1, 1, 1, 1]), 2);
+        assert_eq!(cut(&[1, 1, 1, 1, 1]), 2);
+        assert_eq!(cut(&[0, 0, 0, 0, 0, 0]), 3);
+        assert_eq!(cut(&[10, 1, 1, 1]), 1);
+        assert_eq!(cut(&[1, 1, 1, 10]), 3);
+        assert_eq!(cut(&[50, 60]), 1);
+        assert_eq!(cut(&[2, 2, 50, 40, 2, 2, 2]), 3);
+        assert_eq!(cut(&[2, 2, 40, 50, 2, 2, 2]), 3);
+        assert_eq!(cut(&[2, 2, 30, 30, 30, 2, 2]), 3);
+    }
+
+    /// Every job is done once, with its own work, and the counts add up:
+    /// on one thread in index order, on more threads in any order.
+    #[test]
+    fn every_job_once() {
+        let costs: Vec<u64> = (0..200).map(|i| (i * 37) % 11).collect();
+        for threads in [1, 2, 3] {
+            let mut list = jobs(&costs);
+            let order = std::sync::Mutex::new(Vec::new());
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let run = |index: usize, work: usize| {
+                assert_eq!(index, work);
+                order.lock().unwrap().push(index);
+                (1, index as u64)
+            };
+            let add = |a: (u64, u64), b: (u64, u64)| (a.0 + b.0, a.1 + b.1);
+            let counts = pool.install(|| by_cost(&mut list, &run, &add));
+            assert_eq!(counts, (200, (0..200).sum()));
+            assert!(list.iter().all(Option::is_none));
+            let mut order = order.into_inner().unwrap();
+            if threads == 1 {
+                assert_eq!(order, (0..200).collect::<Vec<_>>());
+            }
+            order.sort();
+            assert_eq!(order, (0..200).collect::<Vec<_>>());
+        }
+    }
+
+    /// The tail: the cheapest jobs, an eighth of the cost, costliest first
+    /// at the end; the others in index order.
+    #[test]
+    fn the_cheapest_jobs_are_set_apart() {
+        let mut list = jobs(&[40, 1, 30, 2, 0, 50, 2, 30, 1]);
+        // Total 157 (the 0 counts 1): the tail holds at most 19.
+        let runs = set_tail_apart(&mut list);
+        let order: Vec<usize> = list.iter().map(|job| job.as_ref().unwrap().index).collect();
+        assert_eq!(runs, 4);
+        assert_eq!(order, [0, 2, 5, 7, 3, 6, 1, 8, 4]);
+        // Equal costs: the last jobs make the tail.
+        let mut list = jobs(&[5; 16]);
+        assert_eq!(set_tail_apart(&mut list), 14);
+        let order: Vec<usize> = list.iter().map(|job| job.as_ref().unwrap().index).collect();
+        assert_eq!(order, (0..16).collect::<Vec<_>>());
+    }
+
+    struct Numbers;
+
+    impl Borrows for Numbers {
+        type At<'a> = &'a mut u32;
+    }
+
+    /// The list keeps its allocation from frame to frame.
+    #[test]
+    fn the_list_keeps_its_allocation() {
+        let mut kept = Jobs::<Numbers>::default();
+        let mut numbers = [1, 2, 3, 4];
+        let mut list = kept.take();
+        list.extend(
+            numbers
+                .iter_mut()
+                .enumerate()
+                .map(|(i, n)| Job::new(i, 1, n)),
+        );
+        let (pointer, capacity) = (list.as_ptr() as usize, list.capacity());
+        kept.keep(list);
+        let again = kept.take();
+        assert_eq!(
+            (again.as_ptr() as usize, again.capacity()),
+            (pointer, capacity)
+        );
+        assert!(again.is_empty());
+    }
+}
