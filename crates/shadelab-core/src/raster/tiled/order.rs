@@ -244,7 +244,9 @@ pub(super) fn band_cost(
         )
     });
     let rows = u64::from((height - (index as u32 * BAND_ROWS).min(height)).min(BAND_ROWS));
-    let spanned = (x1 - x0).max(0) as u64 * rows;
+    // An empty bin's columns are (i32::MAX, i32::MIN).
+    let columns = if x0 < x1 { x1.abs_diff(x0) } else { 0 };
+    let spanned = u64::from(columns) * rows;
     triangles * TRIANGLE_COST + spanned * pixel_cost(method) + u64::from(width) * rows / 4
 }
 
@@ -350,6 +352,30 @@ mod tests {
         assert_eq!(set_tail_apart(&mut list), 14);
         let order: Vec<usize> = list.iter().map(|job| job.as_ref().unwrap().index).collect();
         assert_eq!(order, (0..16).collect::<Vec<_>>());
+    }
+
+    /// A band's cost: its triangles, the columns they span, its rows
+    /// written; empty bins (whose columns are `i32::MAX..i32::MIN`) span
+    /// none, and the last band may be short.
+    #[test]
+    fn band_costs_from_the_bins() {
+        let mut chunks = [Chunk::default(), Chunk::default()];
+        for chunk in &mut chunks {
+            chunk.bins.resize_with(3, Default::default);
+            chunk
+                .bins
+                .iter_mut()
+                .for_each(super::super::chunk::Bin::clear);
+        }
+        let size = (64, 40);
+        let phong = Some(Shading::Phong);
+        assert_eq!(band_cost(&chunks, 0, size, phong), 64 * 16 / 4);
+        assert_eq!(band_cost(&chunks, 2, size, phong), 64 * 8 / 4);
+        chunks[0].bins[1].columns = (10, 20);
+        chunks[1].bins[1].columns = (30, 40);
+        let flat = Some(Shading::Flat);
+        assert_eq!(band_cost(&chunks, 1, size, flat), 30 * 16 + 64 * 16 / 4);
+        assert_eq!(band_cost(&chunks, 1, size, None), 6 * 30 * 16 + 64 * 16 / 4);
     }
 
     struct Numbers;
