@@ -46,6 +46,21 @@ impl Bin {
     }
 }
 
+/// The columns band `index`'s triangles span over all `chunks`' bins
+/// (empty when no triangle touches it: an empty bin's columns are
+/// `i32::MAX..i32::MIN`).
+pub(super) fn band_columns(chunks: &[Chunk], index: usize) -> std::ops::Range<usize> {
+    let (x0, x1) = chunks.iter().fold((i32::MAX, i32::MIN), |(x0, x1), chunk| {
+        let columns = chunk.bins[index].columns;
+        (x0.min(columns.0), x1.max(columns.1))
+    });
+    if x0 < x1 {
+        x0 as usize..x1 as usize
+    } else {
+        0..0
+    }
+}
+
 /// Where a mesh triangle's three corners find their inputs: their
 /// positions' (and projected vertices') indices, their normals' and their
 /// Gouraud colours' (vertex table) indices.

@@ -97,7 +97,7 @@ use rayon::prelude::*;
 
 use self::band::{band_rows, Band, Colors, Depths, Pass, RowWrite};
 
-use self::chunk::{Chunk, Frame, SetupKernel};
+use self::chunk::{band_columns, Chunk, Frame, SetupKernel};
 use self::order::{band_cost, by_cost, chunk_cost, Borrows, Job, Jobs};
 pub(crate) use self::setup::BAND_ROWS;
 use self::setup::{plane_count, PLANES};
@@ -226,18 +226,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             Output::Image { .. } | Output::Methods { .. } => Pass::Shade,
             Output::Counts(_) => Pass::Count,
         };
-        let (x0, x1) = self
-            .chunks
-            .iter()
-            .fold((i32::MAX, i32::MIN), |(x0, x1), chunk| {
-                let columns = chunk.bins[self.index].columns;
-                (x0.min(columns.0), x1.max(columns.1))
-            });
-        let columns = if x0 < x1 {
-            x0 as usize..x1 as usize
-        } else {
-            0..0
-        };
+        let columns = band_columns(self.chunks, self.index);
         let all = S::ALL_METHODS;
         self.band.begin(o.width, y1 - y0, pass, columns, all);
         let stride = if all { PLANES } else { plane_count(S::ATTRS) };

@@ -36,7 +36,7 @@ use std::sync::Mutex;
 
 use rayon::prelude::*;
 
-use super::chunk::Chunk;
+use super::chunk::{band_columns, Chunk};
 use super::setup::BAND_ROWS;
 use crate::scene::Shading;
 
@@ -234,20 +234,10 @@ pub(super) fn band_cost(
     (width, height): (u32, u32),
     method: Option<Shading>,
 ) -> u64 {
-    let (triangles, x0, x1) = chunks.iter().fold((0, i32::MAX, i32::MIN), |acc, chunk| {
-        let bin = &chunk.bins[index];
-        let columns = bin.columns;
-        (
-            acc.0 + bin.triangles.len() as u64,
-            acc.1.min(columns.0),
-            acc.2.max(columns.1),
-        )
-    });
+    let triangles: usize = chunks.iter().map(|c| c.bins[index].triangles.len()).sum();
     let rows = u64::from((height - (index as u32 * BAND_ROWS).min(height)).min(BAND_ROWS));
-    // An empty bin's columns are (i32::MAX, i32::MIN).
-    let columns = if x0 < x1 { x1.abs_diff(x0) } else { 0 };
-    let spanned = u64::from(columns) * rows;
-    triangles * TRIANGLE_COST + spanned * pixel_cost(method) + u64::from(width) * rows / 4
+    let spanned = band_columns(chunks, index).len() as u64 * rows;
+    triangles as u64 * TRIANGLE_COST + spanned * pixel_cost(method) + u64::from(width) * rows / 4
 }
 
 /// A triangle's cost in a band, in the units of [`pixel_cost`] (about half
