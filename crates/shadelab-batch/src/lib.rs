@@ -5,7 +5,7 @@
 //! settings (a [`shadelab_io::SceneFile`] with the command's flags applied,
 //! built exactly as `shadelab render` builds it), into
 //! `DIR/<id>/<view>_<mode>.png`, with one row per output in an index
-//! ([`Row`]). A run ([`run`]) is resumable (complete outputs are skipped),
+//! ([`Row`]). A run ([`run()`]) is resumable (complete outputs are skipped),
 //! shardable ([`Shard`]: a stable share by id, no coordinator), and
 //! survives bad meshes (error rows). [`PreparedMesh`] is the one place a
 //! mesh becomes frames, shared with the Python package's `render`.

@@ -10,7 +10,8 @@
 //! the closed-form formula next to each stepped value (`I_P = (1 − s)·I_1 +
 //! s·I_2`, `I_O = (1 − u)·I_P + u·I_Q`, or their perspective-correct forms)
 //! and the reflection model's terms where it was evaluated, computed by
-//! [`Lighting::explain`], whose total is bit for bit the renderer's.
+//! [`Lighting::explain`](shadelab_core::Lighting::explain), whose total is
+//! bit for bit the renderer's.
 
 use glam::Vec3;
 use shadelab_core::{

@@ -4,7 +4,7 @@
 //!
 //! | instrument | module | entry point |
 //! |---|---|---|
-//! | pixel inspector | `inspect`, `inspect_text` | [`inspect`], [`inspection_text`] ([`inspection_header`], [`method_inspection_text`]) |
+//! | pixel inspector | `inspect`, `inspect_text` | [`inspect()`], [`inspection_text`] ([`inspection_header`], [`method_inspection_text`]) |
 //! | scanline profile (Mach bands) | `profile` | [`profile()`] |
 //! | exact surfaces | `exact` | [`Surface`], [`ExactImage`] |
 //! | error maps, accuracy | `errors` | [`error_maps`], [`heat_scale`], [`accuracy`] |
@@ -14,7 +14,7 @@
 //! | texts in four languages | `texts` | [`Texts`], [`Lang`] |
 //!
 //! For a viewer: a click on pixel (x, y) of a panel is
-//! [`inspect`]`(scene, options, x, y, &[shading])`, shown with
+//! [`inspect()`]`(scene, options, x, y, &[shading])`, shown with
 //! [`inspection_text`] or from its fields; a chosen row is
 //! [`profile()`]`(scene, options, ProfileLine::Row(y), surface)`, whose curves
 //! are plotted as they are; [`error_maps`] gives each panel's

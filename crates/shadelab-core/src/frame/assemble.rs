@@ -13,10 +13,10 @@
 //!
 //! 1. **Degenerate** polygons (no face normal) are counted and dropped.
 //! 2. **Facing** comes first, from the snapped positions of the vertex
-//!    stage ([`project_vertices`]) when no corner needs clipping, so that a
-//!    culled polygon costs no attribute work; otherwise the polygon is
-//!    clipped ([`clip_polygon`]) with its front attributes and faced from
-//!    the clipped window polygon.
+//!    stage ([`project_vertices`](super::window::project_vertices)) when
+//!    no corner needs clipping, so that a culled polygon costs no
+//!    attribute work; otherwise the polygon is clipped ([`clip_polygon`])
+//!    with its front attributes and faced from the clipped window polygon.
 //! 3. **Culling** drops back faces when asked; a back face drawn gets its
 //!    back attributes (normals reversed) and is reversed to wind
 //!    counter-clockwise, as a front face.

@@ -9,9 +9,9 @@
 //!   (not looped: see `portable.rs`), plain safe Rust that compiles for
 //!   any target (LLVM vectorizes some of it: SSE2, or `simd128` on
 //!   WebAssembly when enabled);
-//! * [`Avx2`] (x86-64): one AVX2 instruction per operation. A value of this
-//!   type exists only once the CPU is known to have AVX2 and FMA, which is
-//!   what makes its `unsafe` intrinsic calls sound;
+//! * [`Avx2`](avx2::Avx2) (x86-64): one AVX2 instruction per operation. A
+//!   value of this type exists only once the CPU is known to have AVX2 and
+//!   FMA, which is what makes its `unsafe` intrinsic calls sound;
 //! * `Wasm128` (WebAssembly built with `+simd128`, as the viewer's module
 //!   is): two 128-bit instructions per operation, chosen at compile time
 //!   (a WebAssembly module cannot ask its host what it supports: one built

@@ -3,7 +3,9 @@
 //! [`SceneFile`] mirrors the file (every section and key optional, with the
 //! documented defaults); command-line flags override its fields; then
 //! [`SceneFile::resolve`] checks every value, loads the model and builds the
-//! core's [`Scene`] and [`RenderOptions`]. Errors name the key at fault.
+//! core's [`Scene`](shadelab_core::Scene) and
+//! [`RenderOptions`](shadelab_core::RenderOptions). Errors name the key at
+//! fault.
 //!
 //! A model file's material (an OBJ file's `.mtl` colours, see
 //! [`crate::load_mesh_file`]) fills in what the scene leaves unset: `kd` takes

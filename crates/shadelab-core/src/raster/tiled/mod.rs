@@ -140,7 +140,8 @@ pub(crate) struct TiledRasterizer {
     simd: SimdLevel,
     vertices: VertexTable,
     /// Gouraud colours per distinct vertex, front and (culling off) back,
-    /// clamped to [0, 1] and kept in byte units ([`byte_units`]).
+    /// clamped to [0, 1] and kept in byte units
+    /// ([`byte_units`](crate::shade::byte_units)).
     lit: Vec<[f32; 3]>,
     lit_back: Vec<[f32; 3]>,
     /// Setup's chunks: the first `chunks_used` are this frame's
