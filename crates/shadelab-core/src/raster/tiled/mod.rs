@@ -108,7 +108,7 @@ use crate::image::Image;
 use crate::raster::{PolygonSource, Projected, Rasterize, VertexStage};
 use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::{AllMethods, FlatShader, GouraudShader, Lighting, PhongShader, Shader};
-use crate::simd::{dispatch, Kernel, ReleaseLines, Simd, SimdLevel, WritePrefetch};
+use crate::simd::{dispatch, Kernel, Simd, SimdLevel, WritePrefetch};
 
 /// Setup chunks per thread. A polygon's cost varies tenfold (a back face
 /// stops at facing, a front face is set up and binned) and meshes list
@@ -228,8 +228,6 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             Output::Counts(_) => Pass::Count,
         };
         let columns = band_columns(self.chunks, self.index);
-        // What setup on another thread wrote is handed back once read.
-        let (here, release) = (rayon::current_thread_index(), ReleaseLines::detect());
         let all = S::ALL_METHODS;
         self.band.begin(o.width, y1 - y0, pass, columns, all);
         let stride = if all { PLANES } else { plane_count(S::ATTRS) };
@@ -274,9 +272,6 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                     y1,
                     pass,
                 );
-            }
-            if chunk.set_up_on != here {
-                bin.release(release);
             }
         }
         self.band.flush(simd, self.shader, &lanes);
