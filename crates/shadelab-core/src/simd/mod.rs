@@ -46,6 +46,7 @@
 mod avx2;
 #[cfg(target_arch = "x86_64")]
 mod avx512;
+mod lines;
 mod planes;
 mod portable;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
@@ -54,6 +55,7 @@ mod wide;
 
 use std::ops::{Add, BitAnd, BitOr, Mul, Sub};
 
+pub(crate) use self::lines::{prefetch, ReleaseLines, WritePrefetch};
 pub(crate) use self::planes::{solve_planes, PlaneSolve, SolvedPlane, SOLVE_LANES};
 pub(crate) use self::portable::Portable;
 pub(crate) use self::wide::{Lanes, Pair};
@@ -183,93 +185,6 @@ pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, kernel: K) -> K::Output {
     }
     let _ = level;
     kernel.run(Portable)
-}
-
-/// Asks the processor to start loading the cache line holding `value`, so
-/// that a later read does not wait for memory (a hint: it has no effect on
-/// the program's results, and none at all off x86-64).
-#[inline(always)]
-pub(crate) fn prefetch<T>(value: &T) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        // SAFETY: a prefetch never faults and changes no memory; SSE is part
-        // of every x86-64 processor; the address comes from a reference.
-        unsafe { _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast()) };
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = value;
-}
-
-/// How to ask for a cache line that is about to be written
-/// ([`WritePrefetch::line`]): with `PREFETCHW` where the processor has it
-/// (every AMD64 processor, Intel's since Broadwell), else as [`prefetch`].
-///
-/// Why: a line that another core has read is shared with that core's
-/// cache, and a store to it must first take it away from there. A read
-/// prefetch brings the line shared, so the store still waits for that;
-/// `PREFETCHW` takes the line for writing ahead of the store. Setup's bins
-/// are such lines: each frame's bands, on every thread, read what the
-/// chunks' setup wrote into them, and the next frame's setup writes them
-/// again. Where the host runs the two cores of a virtual machine apart (a
-/// cache line's round trip between them of 430–650 ns instead of 40–60),
-/// setup took 1.7 times as long on the bunny at 1920×1080 (flat); taking
-/// the lines for writing won back a third of that (BENCHMARKS.md, "Where
-/// the two threads' cores are").
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct WritePrefetch {
-    exclusive: bool,
-}
-
-impl WritePrefetch {
-    /// This processor's way, found once.
-    pub(crate) fn detect() -> WritePrefetch {
-        static EXCLUSIVE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-        let exclusive = *EXCLUSIVE.get_or_init(has_prefetchw);
-        WritePrefetch { exclusive }
-    }
-
-    /// Asks the processor to fetch the line holding `value` for writing (a
-    /// hint: it has no effect on the program's results, and none at all off
-    /// x86-64).
-    #[inline(always)]
-    pub(crate) fn line<T>(self, value: &T) {
-        #[cfg(target_arch = "x86_64")]
-        if self.exclusive {
-            // SAFETY: `detect` found PREFETCHW (CPUID 8000_0001h, ECX bit
-            // 8); a prefetch never faults, writes no memory and leaves the
-            // flags; the address comes from a reference.
-            unsafe {
-                std::arch::asm!(
-                    "prefetchw byte ptr [{0}]",
-                    in(reg) (value as *const T),
-                    options(nostack, preserves_flags, readonly),
-                );
-            }
-            return;
-        }
-        prefetch(value);
-    }
-}
-
-/// Whether the processor has `PREFETCHW` (CPUID leaf 8000_0001h, ECX bit 8;
-/// the standard library's feature detection does not name it).
-fn has_prefetchw() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::__cpuid;
-        // SAFETY: CPUID exists on every x86-64 processor; leaf 8000_0001h
-        // is read only where leaf 8000_0000h says it exists. (`__cpuid` is
-        // a safe function in the newest Rust; the block keeps the oldest
-        // this builds with, 1.89, building.)
-        #[allow(unused_unsafe)]
-        unsafe {
-            let highest = __cpuid(0x8000_0000).eax;
-            highest >= 0x8000_0001 && __cpuid(0x8000_0001).ecx & (1 << 8) != 0
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    false
 }
 
 /// `dst[at[i]] = values[i]` for the 8 lanes in order (a later lane wins

@@ -12,7 +12,7 @@ use crate::raster::{
 };
 use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
 use crate::shade::{PhongShader, MAX_ATTRS};
-use crate::simd::{dispatch, prefetch, Kernel, Simd, SimdLevel, Vf, WritePrefetch};
+use crate::simd::{dispatch, prefetch, Kernel, ReleaseLines, Simd, SimdLevel, Vf, WritePrefetch};
 
 /// The triangles of one chunk that touch one band, in submission order,
 /// copied here so that the band reads them as one contiguous stream.
@@ -43,6 +43,16 @@ impl Bin {
         self.planes.clear();
         self.corners.clear();
         self.columns = (i32::MAX, i32::MIN);
+    }
+
+    /// Hands the lines of its triangles, planes and corners back to memory
+    /// ([`ReleaseLines`]): called by a band on a core apart from the one
+    /// whose setup wrote them and will write them again next frame
+    /// (`placement.rs`).
+    pub(super) fn release(&self, lines: ReleaseLines) {
+        lines.slice(&self.triangles);
+        lines.slice(&self.planes);
+        lines.slice(&self.corners);
     }
 }
 
@@ -104,6 +114,10 @@ pub(super) struct Chunk {
     /// triangles hold the index.
     pub(super) flat_surfaces: Vec<[f32; 6]>,
     pub(super) flat_colors: Vec<i32>,
+    /// The pool thread that set it up this frame (`None`: none of the
+    /// pool's): a band drawn on a core apart from that thread's hands back
+    /// the lines of its bin once read (`placement.rs`, [`Bin::release`]).
+    pub(super) set_up_on: Option<usize>,
 }
 
 /// What setup needs to know about the frame.
@@ -455,6 +469,7 @@ impl Chunk {
             bin.clear();
         }
         self.stats = RenderStats::default();
+        self.set_up_on = rayon::current_thread_index();
         self.flat_surfaces.clear();
         let mut sink = Setup::<S, A> {
             simd,

@@ -28,7 +28,11 @@
 //!    writes its rows of the image.
 //!
 //! The threads share setup's chunks and the bands by their estimated cost
-//! (`order.rs`), so that they end each phase together.
+//! (`order.rs`), so that they end each phase together. Where a band runs
+//! on a core apart from the one that set up a chunk (measured every tenth
+//! of a second, `placement.rs`), it hands that chunk's bin back to memory
+//! once read, so that the next frame's setup need not take its lines back
+//! from the band's core.
 //!
 //! What must hold, and why it is built this way:
 //!
@@ -88,6 +92,7 @@
 mod band;
 mod chunk;
 mod order;
+mod placement;
 mod setup;
 mod vertices;
 
@@ -99,6 +104,7 @@ use self::band::{band_rows, Band, Colors, Depths, Pass, RowWrite};
 
 use self::chunk::{band_columns, Chunk, Frame, SetupKernel};
 use self::order::{band_cost, by_cost, chunk_cost, Borrows, Job, Jobs};
+use self::placement::{HandBack, Placement};
 pub(crate) use self::setup::BAND_ROWS;
 use self::setup::{plane_count, PLANES};
 use self::vertices::{light_vertices, VertexTable};
@@ -162,6 +168,10 @@ pub(crate) struct TiledRasterizer {
     /// (`order.rs`).
     setup_jobs: Jobs<SetupChunk>,
     band_jobs: Jobs<BandRows>,
+    /// Which threads' cores are apart, measured every so many frames: a
+    /// band hands back the bins set up on a core apart from its own
+    /// (`placement.rs`).
+    placement: Placement,
 }
 
 /// A setup job's work: its chunk.
@@ -210,7 +220,7 @@ enum Output<'a> {
 struct BandKernel<'a, S> {
     band: &'a mut Band,
     index: usize,
-    chunks: &'a [Chunk],
+    bins: Bins<'a>,
     shader: &'a S,
     options: &'a RenderOptions,
     output: Output<'a>,
@@ -227,7 +237,8 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
             Output::Image { .. } | Output::Methods { .. } => Pass::Shade,
             Output::Counts(_) => Pass::Count,
         };
-        let columns = band_columns(self.chunks, self.index);
+        let Bins { chunks, hand_back } = self.bins;
+        let columns = band_columns(chunks, self.index);
         let all = S::ALL_METHODS;
         self.band.begin(o.width, y1 - y0, pass, columns, all);
         let stride = if all { PLANES } else { plane_count(S::ATTRS) };
@@ -235,7 +246,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
         // Flat colours are lit per chunk after its setup: a flat triangle
         // holds its polygon's index into the chunk's colours.
         let flat = S::ATTRS == 0 || all;
-        for chunk in self.chunks {
+        for chunk in chunks {
             let bin = &chunk.bins[self.index];
             // The three methods at once: a mesh triangle's planes are
             // solved here, from its corners (see `chunk.rs`, `Bin`). One
@@ -273,6 +284,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                     pass,
                 );
             }
+            hand_back.bin(chunk, bin);
         }
         self.band.flush(simd, self.shader, &lanes);
         match self.output {
@@ -343,12 +355,21 @@ fn scratch_band(scratch: &[Mutex<Band>]) -> MutexGuard<'_, Band> {
         .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-/// Runs one band of a pass with the shader `S`, compiled for the SIMD level.
+/// The frame's bins as a band reads them: setup's chunks, and what the
+/// band hands back of them once read (`placement.rs`).
+#[derive(Clone, Copy)]
+struct Bins<'a> {
+    chunks: &'a [Chunk],
+    hand_back: HandBack<'a>,
+}
+
+/// Runs band `index` of a pass with the shader `S`, compiled for the SIMD
+/// level.
 fn band_pass<S: Shader>(
     simd: SimdLevel,
     band: &mut Band,
     index: usize,
-    chunks: &[Chunk],
+    bins: Bins<'_>,
     shader: &S,
     options: &RenderOptions,
     output: Output<'_>,
@@ -356,7 +377,7 @@ fn band_pass<S: Shader>(
     let kernel = BandKernel::<S> {
         band,
         index,
-        chunks,
+        bins,
         shader,
         options,
         output,
@@ -389,11 +410,19 @@ impl TiledRasterizer {
             bands: Vec::new(),
             setup_jobs: Jobs::default(),
             band_jobs: Jobs::default(),
+            placement: Placement::default(),
         }
     }
 
     pub fn simd(&self) -> SimdLevel {
         self.simd
+    }
+
+    /// As if the threads' cores had been measured: thread `k`'s apart from
+    /// thread 0's where `apart[k]` (`placement.rs`).
+    #[cfg(test)]
+    pub(crate) fn assume_apart(&mut self, apart: Vec<bool>) {
+        self.placement.assume(apart);
     }
 }
 
@@ -417,22 +446,26 @@ impl Rasterize for TiledRasterizer {
         let background = packed(options.background);
         let stream = streams(options.width, options.height, scene.mesh.polygon_count());
         let phong = &self.phong;
-        let scratch = &self.bands;
+        let (scratch, placement) = (&self.bands, &self.placement);
         let draw = |index: usize, [rows, ..]: [&mut [Rgb8]; 3]| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
+            let bins = Bins {
+                chunks,
+                hand_back: placement.hand_back(),
+            };
             let output = Output::Image {
                 rows,
                 write: RowWrite { background, stream },
             };
             match options.shading {
-                Shading::Flat => band_pass(simd, band, index, chunks, &FlatShader, options, output),
+                Shading::Flat => band_pass(simd, band, index, bins, &FlatShader, options, output),
                 Shading::Gouraud => {
-                    band_pass(simd, band, index, chunks, &GouraudShader, options, output)
+                    band_pass(simd, band, index, bins, &GouraudShader, options, output)
                 }
                 Shading::Phong => match &phong.one_point_light {
-                    Some(one) => band_pass(simd, band, index, chunks, one, options, output),
-                    None => band_pass(simd, band, index, chunks, phong, options, output),
+                    Some(one) => band_pass(simd, band, index, bins, one, options, output),
+                    None => band_pass(simd, band, index, bins, phong, options, output),
                 },
             }
             (band.fragments, band.covered)
@@ -467,14 +500,18 @@ impl Rasterize for TiledRasterizer {
         let width = options.width as usize;
         let mut counts = vec![0u32; width * options.height as usize];
         let (chunks, simd) = (self.frame_chunks(), self.simd);
-        let scratch = &self.bands;
+        let (scratch, placement) = (&self.bands, &self.placement);
         counts
             .par_chunks_mut(width * BAND_ROWS as usize)
             .enumerate()
             .for_each(|(index, out)| {
                 let mut band = scratch_band(scratch);
                 let output = Output::Counts(out);
-                band_pass(simd, &mut band, index, chunks, &FlatShader, options, output);
+                let bins = Bins {
+                    chunks,
+                    hand_back: placement.hand_back(),
+                };
+                band_pass(simd, &mut band, index, bins, &FlatShader, options, output);
             });
         counts
     }
@@ -517,31 +554,25 @@ impl TiledRasterizer {
         let background = packed(options.background);
         let stream = streams(options.width, options.height, scene.mesh.polygon_count());
         let phong = &self.phong;
-        let scratch = &self.bands;
+        let (scratch, placement) = (&self.bands, &self.placement);
         let [flat, gouraud, phong_image] = images;
         // One walk of each triangle: the three methods share coverage and
         // depth, so the fragments and pixels drawn are the same for each.
         let draw = |index: usize, rows: [&mut [Rgb8]; 3]| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
+            let bins = Bins {
+                chunks,
+                hand_back: placement.hand_back(),
+            };
             let output = Output::Methods {
                 rows,
                 write: RowWrite { background, stream },
                 sources,
             };
             match &phong.one_point_light {
-                Some(one) => {
-                    band_pass(simd, band, index, chunks, &AllMethods(one), options, output)
-                }
-                None => band_pass(
-                    simd,
-                    band,
-                    index,
-                    chunks,
-                    &AllMethods(phong),
-                    options,
-                    output,
-                ),
+                Some(one) => band_pass(simd, band, index, bins, &AllMethods(one), options, output),
+                None => band_pass(simd, band, index, bins, &AllMethods(phong), options, output),
             }
             (band.fragments, band.covered)
         };
@@ -592,6 +623,7 @@ impl TiledRasterizer {
         rows: &std::ops::Range<u32>,
     ) -> (RenderStats, V::Polygons<'v>) {
         self.phong.update(lighting);
+        self.placement.update();
         let (vertex_table, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
         // Vertex lighting, like setup, runs the AVX2 build where AVX-512 is chosen.
         let (phong, simd) = (&self.phong, self.simd.without_avx512());
