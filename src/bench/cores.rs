@@ -11,10 +11,14 @@
 //! microseconds (the two virtual cores taking turns on one core). One
 //! thread's frames did not change. A run that prints this can be read for
 //! what the host did, not only for what the code did (BENCHMARKS.md,
-//! "Where the two threads' cores are").
+//! "Where the two threads' cores are"). The line and its questions are
+//! the renderer's own ([`PingLine`]), which measures them to decide where
+//! its bands hand back their bins; here they are timed over many more
+//! round trips, and averaged.
 
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
+
+use shadelab_core::cores::PingLine;
 
 /// Round trips per sample.
 const TRIPS: u64 = 2_000;
@@ -25,10 +29,6 @@ const SAMPLES: usize = 5;
 /// The most one sample may take: where the two threads share one core, a
 /// round trip can take a scheduler's time slice.
 const SAMPLE_LIMIT: Duration = Duration::from_millis(20);
-
-/// One cache line, alone on its line.
-#[repr(align(128))]
-struct Line(AtomicU64);
 
 /// The median time, in nanoseconds, for one value to go from this thread
 /// to another and back through one cache line, or `None` with fewer than
@@ -42,47 +42,27 @@ pub(super) fn round_trip_ns(cores: usize) -> Option<f64> {
     samples.get(samples.len() / 2).copied()
 }
 
-/// One sample: this thread writes an odd number, the other answers with
-/// the next even one, [`TRIPS`] times (fewer if [`SAMPLE_LIMIT`] passes).
+/// One sample: the mean of [`TRIPS`] round trips to a thread of its own
+/// (fewer if [`SAMPLE_LIMIT`] passes), the first not timed (the other
+/// thread may take a while to start).
 fn sample() -> Option<f64> {
-    let line = Line(AtomicU64::new(0));
-    // The value that tells the other thread to stop.
-    const STOP: u64 = u64::MAX;
+    let line = PingLine::new();
     std::thread::scope(|scope| {
-        scope.spawn(|| loop {
-            // An odd value is a new question (the answer, even, stays until
-            // the next one); `STOP` is odd too, so it is tested first.
-            let value = line.0.load(Ordering::Acquire);
-            if value == STOP {
-                return;
-            }
-            if value % 2 == 1 {
-                line.0.store(value + 1, Ordering::Release);
-            }
-            std::hint::spin_loop();
-        });
-        // The other thread may take a while to start: the first trip is
-        // not timed.
+        scope.spawn(|| line.answer(2 * SAMPLE_LIMIT));
         let mut trips = 0;
         let mut start = Instant::now();
         for trip in 0..=TRIPS {
             if trip == 1 {
                 start = Instant::now();
             }
-            let sent = 2 * trip + 1;
-            line.0.store(sent, Ordering::Release);
-            let mut waited = 0u32;
-            while line.0.load(Ordering::Acquire) != sent + 1 {
-                std::hint::spin_loop();
-                waited = waited.wrapping_add(1);
-                if waited.is_multiple_of(4096) && start.elapsed() > SAMPLE_LIMIT {
-                    line.0.store(STOP, Ordering::Release);
-                    return (trips > 0).then(|| per_trip(start, trips));
-                }
+            line.ask(trip);
+            if !line.wait(trip, start, SAMPLE_LIMIT) {
+                line.stop();
+                return (trips > 0).then(|| per_trip(start, trips));
             }
             trips = trip;
         }
-        line.0.store(STOP, Ordering::Release);
+        line.stop();
         Some(per_trip(start, trips))
     })
 }

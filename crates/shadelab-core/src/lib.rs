@@ -13,6 +13,7 @@ pub mod choice;
 mod camera;
 mod clip;
 mod color;
+pub mod cores;
 mod frame;
 mod image;
 mod light;

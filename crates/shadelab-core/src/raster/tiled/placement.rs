@@ -18,17 +18,17 @@
 //! cannot see where the host puts its cores, and the host moves them, so
 //! it measures ([`Placement::update`]): every tenth of a second
 //! ([`EVERY`]), the first pool thread sends a value through one cache line
-//! to each other thread and back, and a round trip above [`APART`] puts
-//! that thread's core apart (BENCHMARKS.md, "Bins handed back where the
+//! ([`PingLine`]) to each other thread and back, and a round trip above
+//! [`APART`] puts that thread's core apart (BENCHMARKS.md, "Bins handed back where the
 //! cores are apart").
 //!
 //! A measurement takes 25–40 µs on two threads; it changes no pixel, only
 //! which lines are flushed.
 
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use super::chunk::{Bin, Chunk};
+use crate::cores::PingLine;
 use crate::simd::ReleaseLines;
 
 /// Time between two measurements: a tenth of a second, so that a scene of
@@ -47,9 +47,6 @@ const TRIPS: usize = 15;
 /// How long the first thread waits for another to answer its first value
 /// (it may be asleep) before giving up this measurement.
 const ANSWER_LIMIT: Duration = Duration::from_millis(1);
-
-/// The value that ends a thread's answering.
-const STOP: u64 = u64::MAX;
 
 /// Which of the pool's threads run on a core apart from the first
 /// thread's, as last measured.
@@ -143,14 +140,10 @@ impl HandBack<'_> {
     }
 }
 
-/// One cache line, alone on its line.
-#[repr(align(128))]
-struct Line(AtomicU64);
-
 /// Each pool thread's round trip to thread 0 (thread 0's own: zero), or
 /// `None` if a thread did not answer in time.
 fn round_trips(threads: usize) -> Option<Vec<Duration>> {
-    let lines: Vec<Line> = (0..threads).map(|_| Line(AtomicU64::new(0))).collect();
+    let lines: Vec<PingLine> = (0..threads).map(|_| PingLine::new()).collect();
     // Every thread answers on its own line; thread 0 asks each in turn.
     let limit = ANSWER_LIMIT * threads as u32 + Duration::from_millis(10);
     let mut answers = rayon::broadcast(|context| match context.index() {
@@ -162,7 +155,7 @@ fn round_trips(threads: usize) -> Option<Vec<Duration>> {
         ),
         k => {
             if let Some(line) = lines.get(k) {
-                answer(line, limit);
+                line.answer(limit);
             }
             None
         }
@@ -172,56 +165,27 @@ fn round_trips(threads: usize) -> Option<Vec<Duration>> {
     (trips.len() == threads).then_some(trips)
 }
 
-/// Thread 0's side: sends odd values through `line`, waits for each next
-/// even one, and returns the median of [`TRIPS`] timed round trips (the
-/// first, which may wait for the other thread to wake, is not timed), or
-/// `None` if the other thread does not answer within [`ANSWER_LIMIT`].
-fn ask(line: &Line) -> Option<Duration> {
+/// Thread 0's side: the median of [`TRIPS`] timed round trips through
+/// `line` (the first, which may wait for the other thread to wake, is not
+/// timed), or `None` if the other thread does not answer them all within
+/// [`ANSWER_LIMIT`].
+fn ask(line: &PingLine) -> Option<Duration> {
     let started = Instant::now();
     let mut trips = [Duration::ZERO; TRIPS];
     for trip in 0..=TRIPS {
-        let sent = 2 * trip as u64 + 1;
         let sent_at = Instant::now();
-        line.0.store(sent, Ordering::Release);
-        let mut spins = 0u32;
-        while line.0.load(Ordering::Acquire) != sent + 1 {
-            std::hint::spin_loop();
-            spins = spins.wrapping_add(1);
-            if spins.is_multiple_of(1024) && started.elapsed() > ANSWER_LIMIT {
-                line.0.store(STOP, Ordering::Release);
-                return None;
-            }
+        line.ask(trip as u64);
+        if !line.wait(trip as u64, started, ANSWER_LIMIT) {
+            line.stop();
+            return None;
         }
         if trip > 0 {
             trips[trip - 1] = sent_at.elapsed();
         }
     }
-    line.0.store(STOP, Ordering::Release);
+    line.stop();
     trips.sort_unstable();
     Some(trips[TRIPS / 2])
-}
-
-/// Another thread's side: answers each odd value in `line` with the next
-/// even one until [`STOP`], or until `limit` has passed (thread 0 gave up
-/// before its turn came, or never came).
-fn answer(line: &Line, limit: Duration) {
-    let started = Instant::now();
-    let mut spins = 0u32;
-    loop {
-        // `STOP` is odd too, so it is tested first.
-        let value = line.0.load(Ordering::Acquire);
-        if value == STOP {
-            return;
-        }
-        if value % 2 == 1 {
-            line.0.store(value + 1, Ordering::Release);
-        }
-        std::hint::spin_loop();
-        spins = spins.wrapping_add(1);
-        if spins.is_multiple_of(1024) && started.elapsed() > limit {
-            return;
-        }
-    }
 }
 
 #[cfg(test)]
