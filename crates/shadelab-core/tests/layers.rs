@@ -24,8 +24,8 @@ fn layer(module: &str) -> Option<u8> {
         "raster" => 3,
         "shade" => 2,
         "simd" => 1,
-        "camera" | "choice" | "clip" | "color" | "image" | "light" | "limits" | "mesh"
-        | "models" | "normals" | "palette" | "params" | "scene" | "text" => 0,
+        "camera" | "choice" | "clip" | "color" | "cores" | "image" | "light" | "limits"
+        | "mesh" | "models" | "normals" | "palette" | "params" | "scene" | "text" => 0,
         _ => return None,
     })
 }

@@ -19,8 +19,8 @@
 //! it measures ([`Placement::update`]): every tenth of a second
 //! ([`EVERY`]), the first pool thread sends a value through one cache line
 //! ([`PingLine`]) to each other thread and back, and a round trip above
-//! [`APART`] puts that thread's core apart (BENCHMARKS.md, "Bins handed back where the
-//! cores are apart").
+//! [`APART`] puts that thread's core apart (BENCHMARKS.md, "Bins handed
+//! back where the cores are apart").
 //!
 //! A measurement takes 25–40 µs on two threads; it changes no pixel, only
 //! which lines are flushed.
@@ -44,8 +44,9 @@ const APART: Duration = Duration::from_nanos(250);
 /// Round trips timed per thread; their median is taken.
 const TRIPS: usize = 15;
 
-/// How long the first thread waits for another to answer its first value
-/// (it may be asleep) before giving up this measurement.
+/// How long the first thread waits for another to answer all its
+/// questions (the first may find it asleep) before giving up this
+/// measurement.
 const ANSWER_LIMIT: Duration = Duration::from_millis(1);
 
 /// Which of the pool's threads run on a core apart from the first
