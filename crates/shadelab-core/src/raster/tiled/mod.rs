@@ -168,7 +168,7 @@ pub(crate) struct TiledRasterizer {
     /// (`order.rs`).
     setup_jobs: Jobs<SetupChunk>,
     band_jobs: Jobs<BandRows>,
-    /// Which threads' cores are apart, measured every so many frames: a
+    /// Which threads' cores are apart, measured every tenth of a second: a
     /// band hands back the bins set up on a core apart from its own
     /// (`placement.rs`).
     placement: Placement,
@@ -363,6 +363,16 @@ struct Bins<'a> {
     hand_back: HandBack<'a>,
 }
 
+impl<'a> Bins<'a> {
+    /// The bins of `chunks`, for a band drawn on the calling thread.
+    fn here(chunks: &'a [Chunk], placement: &'a Placement) -> Bins<'a> {
+        Bins {
+            chunks,
+            hand_back: placement.hand_back(),
+        }
+    }
+}
+
 /// Runs band `index` of a pass with the shader `S`, compiled for the SIMD
 /// level.
 fn band_pass<S: Shader>(
@@ -450,10 +460,7 @@ impl Rasterize for TiledRasterizer {
         let draw = |index: usize, [rows, ..]: [&mut [Rgb8]; 3]| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
-            let bins = Bins {
-                chunks,
-                hand_back: placement.hand_back(),
-            };
+            let bins = Bins::here(chunks, placement);
             let output = Output::Image {
                 rows,
                 write: RowWrite { background, stream },
@@ -507,10 +514,7 @@ impl Rasterize for TiledRasterizer {
             .for_each(|(index, out)| {
                 let mut band = scratch_band(scratch);
                 let output = Output::Counts(out);
-                let bins = Bins {
-                    chunks,
-                    hand_back: placement.hand_back(),
-                };
+                let bins = Bins::here(chunks, placement);
                 band_pass(simd, &mut band, index, bins, &FlatShader, options, output);
             });
         counts
@@ -561,10 +565,7 @@ impl TiledRasterizer {
         let draw = |index: usize, rows: [&mut [Rgb8]; 3]| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
-            let bins = Bins {
-                chunks,
-                hand_back: placement.hand_back(),
-            };
+            let bins = Bins::here(chunks, placement);
             let output = Output::Methods {
                 rows,
                 write: RowWrite { background, stream },
