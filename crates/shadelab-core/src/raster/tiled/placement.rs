@@ -19,8 +19,9 @@
 //! it measures ([`Placement::update`]): every tenth of a second
 //! ([`EVERY`]), the first pool thread sends a value through one cache line
 //! ([`PingLine`]) to each other thread and back, and a round trip above
-//! [`APART`] puts that thread's core apart (BENCHMARKS.md, "Bins handed
-//! back where the cores are apart").
+//! [`APART`] puts that thread's core apart, one below [`BESIDE`] beside
+//! (one between the two leaves it where it was: [`placed`]; BENCHMARKS.md,
+//! "Bins handed back where the cores are apart").
 //!
 //! A measurement takes 25–40 µs on two threads; it changes no pixel, only
 //! which lines are flushed.
@@ -37,9 +38,17 @@ use crate::simd::ReleaseLines;
 const EVERY: Duration = Duration::from_millis(100);
 
 /// A round trip longer than this puts a thread's core apart from the
-/// first thread's. Between the two states measured on the KVM Zen 5 EPYC
-/// (40–130 ns beside each other, 300–650 ns apart).
+/// first thread's; one shorter than [`BESIDE`], beside it; one between
+/// the two keeps the thread where it was (at first: beside). On the KVM
+/// Zen 5 EPYC the renderer's medians were 80–100 ns with the cores beside
+/// each other and 340–460 ns apart, but 5 of 214 apart came to 220–231
+/// ns: there a few of the trips take 190–250 ns, and sometimes most of
+/// them do (BENCHMARKS.md, "Placement's readings").
 const APART: Duration = Duration::from_nanos(250);
+
+/// A round trip shorter than this puts a thread's core beside the first
+/// thread's (see [`APART`]).
+const BESIDE: Duration = Duration::from_nanos(150);
 
 /// Round trips timed per thread; their median is taken.
 const TRIPS: usize = 15;
@@ -85,7 +94,7 @@ impl Placement {
         self.measured = Some(now);
         self.threads = threads;
         if let Some(trips) = round_trips(threads) {
-            self.apart = trips.iter().map(|&trip| trip > APART).collect();
+            self.apart = placed(&trips, &self.apart);
         } else if self.apart.len() != threads {
             self.apart.clear();
         }
@@ -139,6 +148,15 @@ impl HandBack<'_> {
             bin.release(self.lines);
         }
     }
+}
+
+/// Where each thread is, from its round trip to thread 0 (`trips`) and
+/// where it was (`last`; empty or of another pool: beside): apart above
+/// [`APART`], beside below [`BESIDE`], and between the two where it was.
+fn placed(trips: &[Duration], last: &[bool]) -> Vec<bool> {
+    let was = |k: usize| last.len() == trips.len() && last[k];
+    let place = |(k, &trip): (usize, &Duration)| trip > APART || (trip >= BESIDE && was(k));
+    trips.iter().enumerate().map(place).collect()
 }
 
 /// Each pool thread's round trip to thread 0 (thread 0's own: zero), or
@@ -257,6 +275,27 @@ mod tests {
             // the measurement failed and kept the last one).
             assert!(placement.apart == [true, true] || !placement.apart[0]);
         });
+    }
+
+    /// A round trip above [`APART`] puts a thread apart, one below
+    /// [`BESIDE`] beside, and one between the two leaves it where it was;
+    /// a pool of another size starts beside.
+    #[test]
+    fn placed_with_a_margin() {
+        let ns = |trips: &[u64]| -> Vec<Duration> {
+            trips.iter().map(|&n| Duration::from_nanos(n)).collect()
+        };
+        let trips = ns(&[0, 400, 90, 220, 220]);
+        let last = [false, false, true, true, false];
+        assert_eq!(placed(&trips, &last), [false, true, false, true, false]);
+        assert_eq!(placed(&trips, &[]), [false, true, false, false, false]);
+        assert_eq!(
+            placed(&trips, &[true, true]),
+            [false, true, false, false, false]
+        );
+        let edges = ns(&[0, 250, 251, 150, 149]);
+        let last = [false, true, false, true, true];
+        assert_eq!(placed(&edges, &last), [false, true, true, true, false]);
     }
 
     /// Bins are handed back between threads on different sides of thread
