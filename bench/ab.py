@@ -14,9 +14,9 @@ machine whose speed changes in phases of seconds (BENCHMARKS.md, "The same
 code on an AMD EPYC"), a change the medians and the minima disagree on is
 not measured. The raw times, with each frame's, go to /tmp/ab.json.
 """
-import json, os, subprocess, sys, statistics, math
+import json, sys, statistics, math
 
-MODELS = os.environ.get('SHADELAB_MODELS') or os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'shared', 'models')
+from common import bench_json
 A, B, rounds = sys.argv[1], sys.argv[2], int(sys.argv[3])
 extra = sys.argv[4:]
 medians = {A: {}, B: {}}
@@ -25,8 +25,7 @@ frames = {A: {}, B: {}}
 machine = None
 for r in range(rounds):
     for binary in ([A, B] if r % 2 == 0 else [B, A]):
-        out = subprocess.run([binary, 'bench', '--json', '--models-dir', MODELS] + extra, capture_output=True, text=True, check=True).stdout
-        data = json.loads(out)
+        data = bench_json(binary, extra)
         machine = data.get('machine', machine)
         for row in data['rows']:
             key = (row['model'], f"{row['width']}x{row['height']}", row['shading'], row['rasterizer'], row['threads'])

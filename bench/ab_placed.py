@@ -17,10 +17,9 @@ way. Prints per row and state the pairs, both medians, the median of the
 pairs' ratios after/before and in how many pairs AFTER was faster; the raw
 pairs go to FILE (default /tmp/ab_placed.jsonl), one JSON object a line.
 """
-import argparse, json, os, statistics, subprocess, time
+import argparse, json, statistics, time
 
-MODELS = os.environ.get('SHADELAB_MODELS') or os.path.join(
-    os.path.dirname(os.path.abspath(__file__)), '..', '..', 'shared', 'models')
+from common import bench_json
 
 parser = argparse.ArgumentParser()
 parser.add_argument('before')
@@ -34,11 +33,8 @@ args = parser.parse_args()
 
 def call(binary, model, shading):
     """One `bench --json` call: its round trip (ns) and its median (ms)."""
-    out = subprocess.run([binary, 'bench', '--json', '--models-dir', MODELS, '--rasterizer', 'tiled',
-                          '--frames', '101', '--threads', '2', '--size', args.size,
-                          '--model', model, '--shading', shading],
-                         capture_output=True, text=True, check=True).stdout
-    data = json.loads(out)
+    data = bench_json(binary, ['--rasterizer', 'tiled', '--frames', '101', '--threads', '2',
+                               '--size', args.size, '--model', model, '--shading', shading])
     return data['machine']['round_trip_ns'], data['rows'][0]['median_ms']
 
 

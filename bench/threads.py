@@ -12,18 +12,14 @@ round trip between the two cores that each round measured as it started
 apart), then per row the medians over the rounds, their ratio, and the
 median, least and greatest of the rounds' own ratios.
 """
-import json, os, statistics, subprocess, sys
+import statistics, sys
 
-MODELS = os.environ.get('SHADELAB_MODELS') or os.path.join(
-    os.path.dirname(os.path.abspath(__file__)), '..', '..', 'shared', 'models')
+from common import bench_json
 binary, rounds = sys.argv[1], int(sys.argv[2])
 extra = sys.argv[3:]
 times, trips = {}, []
 for r in range(rounds):
-    out = subprocess.run([binary, 'bench', '--json', '--models-dir', MODELS, '--rasterizer', 'tiled',
-                          '--threads', '1,2', '--frames', '101'] + extra,
-                         capture_output=True, text=True, check=True).stdout
-    data = json.loads(out)
+    data = bench_json(binary, ['--rasterizer', 'tiled', '--threads', '1,2', '--frames', '101'] + extra)
     trips.append(data['machine']['round_trip_ns'])
     for row in data['rows']:
         key = (row['model'], f"{row['width']}x{row['height']}", row['shading'])
