@@ -1,8 +1,9 @@
 // How the viewer draws, in headless Chromium (as viewer.test.js): a user's
 // file is parsed once and its mesh handed to the other panels; the three
 // panels of one scene are drawn in one request (in parts of their rows on
-// two cores); a frame leaves the page's thread alone while it is drawn; and
-// the frames' times. Measurements go to ./artifacts/.
+// two cores); the first view is drawn again while the engine warms up; a
+// frame leaves the page's thread alone while it is drawn; and the frames'
+// times. Measurements go to ./artifacts/.
 //
 // Run from the repository root after `cargo build --release`:
 //   (cd tests/browser && npm ci && npm test)
@@ -203,6 +204,37 @@ async function measure(page, frames, warmup, step) {
   }
   return out;
 }
+
+test('after load the first view is drawn three more times, and the captions start from the last of them', async () => {
+  const { page, problems } = await openViewer();
+  const seen = () => page.evaluate(() => window.shadelab.panels.map((p) => ({
+    method: p.method,
+    frames: p.frames,
+    times: p.times.length,
+    settling: !!p.last.settling,
+    label: p.figure.querySelector('.time-label').textContent,
+  })));
+  // The browser compiles the engine during its first frames: the page draws
+  // the first view again while nothing else is asked for (main.js,
+  // SETTLING_FRAMES), and each of those frames restarts the captions' times.
+  for (const p of await seen()) {
+    assert.equal(p.frames, 4, `${p.method}: the first view and three more`);
+    assert.equal(p.times, 1, `${p.method}: the caption times the last of them alone`);
+    assert.ok(p.settling, p.method);
+    assert.match(p.label, /last frame$/, p.method);
+  }
+  // A change ends them: one frame per key, and the times go on from there.
+  await page.locator('.panel[data-method="phong"] canvas').focus();
+  await page.keyboard.press('ArrowRight');
+  await settle(page);
+  for (const p of await seen()) {
+    assert.equal(p.frames, 5, `${p.method}: one frame for the key`);
+    assert.equal(p.times, 2, p.method);
+    assert.ok(!p.settling, p.method);
+  }
+  assert.deepEqual(problems, []);
+  await page.close();
+});
 
 test('a quick frame leaves the page alone while it is drawn; a slow one dims its caption', async () => {
   const { page, problems } = await openViewer();

@@ -194,7 +194,7 @@ export class Panel {
     this.drawing = true;
     this.showBusySoon();
     try {
-      const { generation, gouraudSpecular, ...msg } = request;
+      const { generation, gouraudSpecular, settling, ...msg } = request;
       const spare = this.takeSpare();
       const sent = performance.timeOrigin + performance.now();
       const frame = await this.ask({ type: 'render', ...msg, spare }, spare ? [spare] : []);
@@ -203,6 +203,7 @@ export class Panel {
       frame.generation = generation;
       frame.gouraudSpecular = gouraudSpecular;
       frame.overlays = msg.overlays;
+      frame.settling = !!settling;
       this.show(frame);
     } catch (error) {
       this.onerror(this, error);
@@ -235,8 +236,10 @@ export class Panel {
 
   #draw(frame) {
     // Times of frames drawn together and apart are not comparable: each
-    // history holds one kind.
-    if (this.last && !!this.last.together !== !!frame.together) {
+    // history holds one kind. A frame of the first view drawn again
+    // (`settling`, main.js) replaces the history: the frames before it ran
+    // while the browser was still compiling the engine.
+    if (frame.settling || (this.last && !!this.last.together !== !!frame.together)) {
       this.times.length = 0;
       this.timings.length = 0;
     }
@@ -384,7 +387,7 @@ export class PanelGroup {
       p.showBusySoon();
     }
     try {
-      const { generation, gouraudSpecular, scene } = request;
+      const { generation, gouraudSpecular, scene, settling } = request;
       const spares = this.panels.map((p) => p.takeSpare());
       const sent = performance.timeOrigin + performance.now();
       const answer = await this.#draw(scene, spares);
@@ -396,6 +399,7 @@ export class PanelGroup {
         frame.gouraudSpecular = gouraudSpecular;
         frame.overlays = '';
         frame.together = true;
+        frame.settling = !!settling;
         this.panels[k].show(frame);
       });
     } catch (error) {
