@@ -150,12 +150,24 @@ const QUEUE_ROOM: usize = 16;
 
 /// Fragments of a deferred shader, packed into whole lanes: their
 /// attributes and buffer indices, in the order they passed the depth test.
+///
+/// Aligned to a cache line, and each attribute's row is whole lines long,
+/// so that a group of 16 (one 512-bit vector, the unit of
+/// [`Band::shade_queue`] and of `pairs.rs`'s appends) never straddles two
+/// lines. Without the alignment the queue sat 48 bytes past a line in
+/// `Band`, every 512-bit load and store of it touched two, and the Zen 4
+/// EPYC lit the full-screen quad 3–5 % slower (BENCHMARKS.md, "The
+/// lighting queue on cache lines").
 #[derive(Debug)]
+#[repr(align(64))]
 struct Queue {
     attrs: [[f32; QUEUE_LIT + QUEUE_ROOM]; MAX_ATTRS],
     at: [i32; QUEUE_LIT + QUEUE_ROOM],
     len: usize,
 }
+
+// Each attribute's row, and the indices after them, start on a line.
+const _: () = assert!((QUEUE_LIT + QUEUE_ROOM) * 4 % 64 == 0);
 
 impl Default for Queue {
     fn default() -> Queue {
