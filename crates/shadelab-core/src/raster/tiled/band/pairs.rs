@@ -328,12 +328,7 @@ impl Band {
                     break;
                 }
                 z.store_to(depth);
-                let mut attrs = pairs.attributes(f, w);
-                if f.t.flip != 1.0 {
-                    for a in &mut attrs[..3] {
-                        *a = *a * f.t.flip;
-                    }
-                }
+                let attrs = pairs.attributes(f, w);
                 self.append_pair(s, &attrs[..Sh::ATTRS], at);
                 fragments += 16;
                 pairs.step();

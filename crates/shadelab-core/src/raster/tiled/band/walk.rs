@@ -5,7 +5,7 @@
 use super::gather::gathers;
 use super::pairs::{fill_span, inside};
 use super::{Band, Pass};
-use crate::raster::tiled::setup::{plane_count, Plane, Triangle, Walk, GOURAUD_OF_ALL};
+use crate::raster::tiled::setup::{plane_count, Plane, Triangle, Walk, GOURAUD_OF_ALL, PLANES};
 use crate::raster::{Interpolation, SUBPIXEL_HALF, SUBPIXEL_ONE};
 use crate::shade::{FlatShader, GouraudShader, Shader, MAX_ATTRS};
 use crate::simd::{Apart, Lanes, Simd, Vf, Vi};
@@ -32,6 +32,14 @@ impl Band {
         if rows.is_empty() {
             return;
         }
+        // Only a back face drawn pays for the copy.
+        let turned;
+        let planes = if Sh::DEFERRED && t.flip != 1.0 {
+            turned = turn_normals(planes, t.flip);
+            &turned[..planes.len()]
+        } else {
+            planes
+        };
         let mut dx = [Vf::splat(s, 0.0); 2 + MAX_ATTRS];
         let (mut origin, mut dy) = ([0f32; 2 + MAX_ATTRS], [0f32; 2 + MAX_ATTRS]);
         for j in 0..plane_count(Sh::ATTRS) {
@@ -514,9 +522,32 @@ pub(super) fn shade_block<S: Simd, Sh: Shader, const SPAN: bool>(
     bits.count_ones()
 }
 
+/// `planes` (the first of the result) with a deferred shader's normal
+/// (attributes 0..3, planes 2..5) turned by `flip`, −1 for a back face
+/// drawn.
+///
+/// A plane whose three numbers are negated gives exactly the negated
+/// values wherever it is evaluated (rounding is symmetric), so every
+/// interpolated normal is the turned one, bit for bit, without a test and
+/// three multiplications per block or pair: the compiler computed those
+/// products for every block and discarded them on front faces.
+#[inline(always)]
+fn turn_normals(planes: &[Plane], flip: f32) -> [Plane; PLANES] {
+    let mut turned = [Plane::default(); PLANES];
+    turned[..planes.len()].copy_from_slice(planes);
+    for plane in &mut turned[2..5] {
+        *plane = Plane {
+            at_origin: plane.at_origin * flip,
+            dx: plane.dx * flip,
+            dy: plane.dy * flip,
+        };
+    }
+    turned
+}
+
 /// The attributes at columns `x` of the triangle, given each plane's value
 /// at the first column of the fragments' rows (for a deferred shader, the
-/// normal flipped for back faces).
+/// normal already turned for back faces: [`turn_normals`]).
 #[inline(always)]
 pub(super) fn interpolate<S: Simd, Sh: Shader>(
     f: &Fill<'_, S, Sh>,
@@ -525,13 +556,7 @@ pub(super) fn interpolate<S: Simd, Sh: Shader>(
 ) -> [Vf<S>; MAX_ATTRS] {
     let (count, scale_free) = (Sh::ATTRS, Sh::SCALE_FREE);
     let planes = (count, scale_free);
-    let mut attrs = interpolate_planes(f.interpolation, planes, x, |k| f.dx[k], at_row, None);
-    if Sh::DEFERRED && f.t.flip != 1.0 {
-        for k in 0..3 {
-            attrs[k] = attrs[k] * f.t.flip;
-        }
-    }
-    attrs
+    interpolate_planes(f.interpolation, planes, x, |k| f.dx[k], at_row, None)
 }
 
 /// Attributes `0..count` at columns `x`, from each plane's gradient
