@@ -167,7 +167,7 @@ struct Queue {
 }
 
 // Each attribute's row, and the indices after them, start on a line.
-const _: () = assert!((QUEUE_LIT + QUEUE_ROOM) * 4 % 64 == 0);
+const _: () = assert!(((QUEUE_LIT + QUEUE_ROOM) * 4).is_multiple_of(64));
 
 impl Default for Queue {
     fn default() -> Queue {
