@@ -22,10 +22,10 @@
 //! * **spans** (large triangles): per row, each edge's boundary column is
 //!   found exactly (see `span` in `walk.rs`) and the span between them is filled with
 //!   no edge arithmetic per pixel, the columns stepped in vectors. Nearly
-//!   all of a span's blocks are whole: flat and Gouraud draw them, and
-//!   Phong queues them, two at a time in 16 lanes (`pairs.rs`); when all
-//!   lanes pass the depth test, flat's and Gouraud's colours are stored
-//!   without reading back the old ones.
+//!   all of a span's blocks are whole: flat and Gouraud draw them, two at
+//!   a time in 16 lanes (`pairs.rs`), and Phong lights such pairs in place,
+//!   a row's run of them at once; when all lanes pass the depth test, the
+//!   colours are stored without reading back the old ones.
 //!
 //! Then per block: depth test "less" (depth from its plane), and shading
 //! specialised per method by the [`crate::shade::Shader`] type parameter. Phong does not
@@ -77,6 +77,8 @@
 //! This file holds a band's storage, its start and its finish (colours and
 //! counts out to the image); `walk.rs` a triangle's walk over the band
 //! (rows, blocks, spans, the depth test, flat's and Gouraud's blocks);
+//! `pairs.rs` a span's blocks two at a time (flat, Gouraud);
+//! `phong_span.rs` Phong's spans, their whole pairs lit in place;
 //! `gather.rs` Phong's small triangles' passes in one mask; `queue.rs`
 //! Phong's queues.
 
@@ -86,6 +88,7 @@
 mod depth_buffer;
 mod gather;
 mod pairs;
+mod phong_span;
 mod queue;
 mod walk;
 
@@ -164,6 +167,10 @@ struct Queue {
     attrs: [[f32; QUEUE_LIT + QUEUE_ROOM]; MAX_ATTRS],
     at: [i32; QUEUE_LIT + QUEUE_ROOM],
     len: usize,
+    /// Whether the queue may hold fragments of triangles before the one
+    /// being drawn, which must be lit before any of its pixels are lit in
+    /// place (`pairs.rs`, `Band::light_pairs`).
+    older: bool,
 }
 
 // Each attribute's row, and the indices after them, start on a line.
@@ -175,6 +182,7 @@ impl Default for Queue {
             attrs: [[0.0; QUEUE_LIT + QUEUE_ROOM]; MAX_ATTRS],
             at: [0; QUEUE_LIT + QUEUE_ROOM],
             len: 0,
+            older: false,
         }
     }
 }

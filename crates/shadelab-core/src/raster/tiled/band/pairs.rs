@@ -1,5 +1,6 @@
 //! A large triangle's span, its blocks two at a time in 16 lanes
-//! ([`Simd::F16`]): flat and Gouraud colour them, Phong queues them.
+//! ([`Simd::F16`]): flat and Gouraud colour them (here), Phong lights
+//! them (`phong_span.rs`).
 //!
 //! Inside a large triangle nearly every pair of blocks lies wholly in the
 //! span and passes the depth test whole. With AVX-512 such a pair is one
@@ -27,23 +28,24 @@
 //! guard before its conversion to bytes, where [`planes_below`] shows that
 //! no lane of the row can reach 2^31 (the guard's only effect is on such
 //! values, so the bytes are the same).
+//!
+//! Phong's spans use the same pairs (`phong_span.rs`).
 
 use super::walk::{interpolate_planes, needs_w, planes_below, row_w, shade_block, Fill, Row};
-use super::Band;
 use crate::raster::tiled::setup::plane_count;
 use crate::shade::{Shader, MAX_ATTRS};
 use crate::simd::{Lanes, Simd, Vi};
 
 /// What a row's pairs of blocks need, in 16 lanes, and the columns of the
 /// current pair.
-struct Pairs<S: Simd> {
+pub(super) struct Pairs<S: Simd> {
     /// Columns relative to the triangle's first, as the planes take them:
     /// integers below 2^24, so the compares and steps are exact.
-    column: S::F16,
+    pub(super) column: S::F16,
     /// The span, `from < column < to`, in the same terms.
     from: S::F16,
     to: S::F16,
-    sixteen: S::F16,
+    pub(super) sixteen: S::F16,
     dx: [S::F16; 2 + MAX_ATTRS],
     at_row: [S::F16; 2 + MAX_ATTRS],
 }
@@ -52,7 +54,12 @@ impl<S: Simd> Pairs<S> {
     /// The pairs of row `row`'s span `left..right` (image columns) from the
     /// one at column `x`.
     #[inline(always)]
-    fn new<Sh: Shader>(s: S, f: &Fill<'_, S, Sh>, row: &Row, (x, left, right): Span) -> Self {
+    pub(super) fn new<Sh: Shader>(
+        s: S,
+        f: &Fill<'_, S, Sh>,
+        row: &Row,
+        (x, left, right): Span,
+    ) -> Self {
         let x0 = f.t.x0;
         let ramp = s.f16_load(&std::array::from_fn(|i| i as f32));
         let mut dx = [ramp; 2 + MAX_ATTRS];
@@ -74,17 +81,44 @@ impl<S: Simd> Pairs<S> {
     /// The current pair's depths, and a bit per lane inside the span whose
     /// depth is less than `stored` (as a block's `z < stored`).
     #[inline(always)]
-    fn depth_test(&self, s: S, stored: &[f32; 16]) -> (S::F16, u32) {
+    pub(super) fn depth_test(&self, s: S, stored: &[f32; 16]) -> (S::F16, u32) {
         let inside = self.column.gt(self.from) & self.to.gt(self.column);
         let z = self.column.mul_add(self.dx[0], self.at_row[0]);
         let pass = inside & s.f16_load(stored).gt(z);
         (z, <S::F16 as Lanes>::mask_bits(pass))
     }
 
+    /// How many pairs from the current one are whole, each lane inside
+    /// the span and passing the depth test, with their depths stored in
+    /// `depth` (which holds theirs and the rest of the row's pairs'); and
+    /// the first other pair's bits from [`Pairs::depth_test`] (0xffff if
+    /// there is none). Does not step.
+    ///
+    /// Its own loop, with what it needs in locals: in `queue_span`'s, the
+    /// column and the pair count lived on the stack, written back per pair.
+    #[inline(always)]
+    pub(super) fn whole_run(&self, s: S, depth: &mut [f32]) -> (usize, u32) {
+        let (from, to, sixteen) = (self.from, self.to, self.sixteen);
+        let (dz, z0) = (self.dx[0], self.at_row[0]);
+        let mut column = self.column;
+        let depth = depth.as_chunks_mut::<16>().0;
+        for (k, stored) in depth.iter_mut().enumerate() {
+            let inside = column.gt(from) & to.gt(column);
+            let z = column.mul_add(dz, z0);
+            let pass = <S::F16 as Lanes>::mask_bits(inside & s.f16_load(stored).gt(z));
+            if pass != 0xffff {
+                return (k, pass);
+            }
+            z.store_to(stored);
+            column = column + sixteen;
+        }
+        (depth.len(), 0xffff)
+    }
+
     /// w for the row's pairs where it is the same along the row
     /// ([`row_w`]), else `None`.
     #[inline(always)]
-    fn row_w<Sh: Shader>(&self, f: &Fill<'_, S, Sh>, row: &Row) -> Option<S::F16> {
+    pub(super) fn row_w<Sh: Shader>(&self, f: &Fill<'_, S, Sh>, row: &Row) -> Option<S::F16> {
         // Flat has no 1/w plane. No closure: see `Surface::radiance`.
         if plane_count(Sh::ATTRS) > 1 {
             let planes = (Sh::ATTRS, Sh::SCALE_FREE);
@@ -108,11 +142,22 @@ impl<S: Simd> Pairs<S> {
         f: &Fill<'_, S, Sh>,
         w: Option<S::F16>,
     ) -> [S::F16; MAX_ATTRS] {
+        self.attributes_at(f, self.column, w)
+    }
+
+    /// As [`Pairs::attributes`], for the pair at `column`.
+    #[inline(always)]
+    pub(super) fn attributes_at<Sh: Shader>(
+        &self,
+        f: &Fill<'_, S, Sh>,
+        column: S::F16,
+        w: Option<S::F16>,
+    ) -> [S::F16; MAX_ATTRS] {
         let (dx, at_row) = (&self.dx, &self.at_row);
         interpolate_planes(
             f.interpolation,
             (Sh::ATTRS, Sh::SCALE_FREE),
-            self.column,
+            column,
             |j| dx[j],
             |j| at_row[j],
             w,
@@ -162,18 +207,18 @@ impl<S: Simd> Pairs<S> {
 
     /// On to the next pair.
     #[inline(always)]
-    fn step(&mut self) {
+    pub(super) fn step(&mut self) {
         self.column = self.column + self.sixteen;
     }
 }
 
 /// A pair's first column `x`, and the span `left..right`.
-type Span = (i32, i32, i32);
+pub(super) type Span = (i32, i32, i32);
 
 /// How many blocks of 8 the span has from column `x`, and how many of them
 /// go alone first so that the pairs start at a multiple of 16 (0 or 1).
 #[inline(always)]
-fn blocks_and_head(x: i32, right: i32) -> (usize, usize) {
+pub(super) fn blocks_and_head(x: i32, right: i32) -> (usize, usize) {
     let blocks = ((right - x).max(0) as usize).div_ceil(8);
     (blocks, usize::from(x % 16 != 0).min(blocks))
 }
@@ -292,92 +337,4 @@ fn blocks<S: Simd, Sh: Shader>(
 pub(super) fn inside<S: Simd>(s: S, (x, left, right): Span) -> Vi<S> {
     let lanes = Vi::ramp(s) + Vi::splat(s, x);
     lanes.gt(Vi::splat(s, left - 1)) & Vi::splat(s, right).gt(lanes)
-}
-
-impl Band {
-    /// Queues one row's span for a deferred shader (Phong) as
-    /// [`fill_span`] fills it; `row_start` is the row's buffer index.
-    #[inline(always)]
-    pub(super) fn queue_span<S: Simd, Sh: Shader>(
-        &mut self,
-        s: S,
-        f: &Fill<'_, S, Sh>,
-        row: &Row,
-        row_start: usize,
-        (x, left, right): Span,
-    ) -> u32 {
-        let (blocks, head) = blocks_and_head(x, right);
-        let mut fragments = self.queue_blocks(s, f, row, row_start, (x, left, right), head);
-        let mut x = x + 8 * head as i32;
-        let mut pairs = Pairs::new(s, f, row, (x, left, right));
-        let w = pairs.row_w(f, row);
-        let (count, mut k) = ((blocks - head) / 2, 0);
-        while k < count {
-            // Whole pairs while the queue has room. This loop holds no
-            // lighting: the lighting, inlined into the same function, needs
-            // every register, and with it in the loop body the pairs'
-            // constants and counters lived on the stack (AVX-512: 18 stack
-            // operands per pair; out of it, 10, the counters in registers).
-            // The fragments are queued and lit in the same order as with
-            // the lighting inside.
-            while k < count && !self.queue_full::<S>() {
-                let at = row_start + x as usize;
-                let depth: &mut [f32; 16] = (&mut self.depth[at..at + 16]).try_into().unwrap();
-                let (z, pass) = pairs.depth_test(s, depth);
-                if pass != 0xffff {
-                    break;
-                }
-                z.store_to(depth);
-                let attrs = pairs.attributes(f, w);
-                self.append_pair(s, &attrs[..Sh::ATTRS], at);
-                fragments += 16;
-                pairs.step();
-                x += 16;
-                k += 1;
-            }
-            if k == count {
-                break;
-            }
-            if self.queue_full::<S>() {
-                self.shade_queue(s, f.shader, f.shader_lanes);
-                continue;
-            }
-            // A pair not whole (partly outside the span, or partly or
-            // wholly hidden): its blocks one by one, which redo the test.
-            let at = row_start + x as usize;
-            let depth: &[f32; 16] = (&self.depth[at..at + 16]).try_into().unwrap();
-            if pairs.depth_test(s, depth).1 != 0 {
-                fragments += self.queue_blocks(s, f, row, row_start, (x, left, right), 2);
-            }
-            pairs.step();
-            x += 16;
-            k += 1;
-        }
-        if self.queue_full::<S>() {
-            self.shade_queue(s, f.shader, f.shader_lanes);
-        }
-        let rest = (blocks - head) % 2;
-        fragments + self.queue_blocks(s, f, row, row_start, (x, left, right), rest)
-    }
-
-    /// `count` blocks from column `x` of the span, one by one
-    /// ([`Band::block`]).
-    #[inline(always)]
-    fn queue_blocks<S: Simd, Sh: Shader>(
-        &mut self,
-        s: S,
-        f: &Fill<'_, S, Sh>,
-        row: &Row,
-        row_start: usize,
-        (x, left, right): Span,
-        count: usize,
-    ) -> u32 {
-        let mut fragments = 0;
-        for k in 0..count {
-            let x = x + 8 * k as i32;
-            let inside = inside(s, (x, left, right));
-            fragments += self.block::<S, Sh, true>(s, f, inside, row_start + x as usize, x, row);
-        }
-        fragments
-    }
 }

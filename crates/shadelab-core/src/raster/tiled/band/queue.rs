@@ -11,8 +11,8 @@
 //! kernel took 123 KB of AVX-512 code, 33 KB with the lighting apart.
 //! Against f7b3cb7 on the Zen 5 EPYC, the meshes' 1080p Phong rows 1–1.5 %
 //! faster and the quad's 2–3 %, the same pictures (BENCHMARKS.md, "The
-//! queue's lighting in a function of its own"). Large triangles' pairs
-//! (`pairs.rs`) light in line: they run apart already, in Phong's spans.
+//! queue's lighting in a function of its own"). Large triangles' runs of
+//! whole pairs skip the queue: `pairs.rs` lights them in place.
 
 use super::walk::{interpolate, Fill, Row};
 use super::Band;

@@ -366,6 +366,7 @@ impl<S: Simd, Sh: Shader> Apart<S> for PhongSpans<'_, '_, S, Sh> {
     #[inline(always)]
     fn run(self, s: S) {
         let (rows, y0) = (self.rows, self.band_y0);
+        self.band.queue.older = self.band.queue.len > 0;
         self.band.walk_spans::<S, Sh, true>(s, self.fill, rows, y0);
     }
 }
