@@ -147,7 +147,7 @@ pub(crate) struct Band {
 const QUEUE_LIT: usize = 16 * crate::simd::MAX_LIT_GROUPS;
 
 /// The queue's room past [`QUEUE_LIT`]: the most fragments queued at once
-/// (a pair of whole blocks, `pairs.rs`), and so the most left over once
+/// (a pair of whole blocks, `phong_span.rs`), and so the most left over once
 /// the queue is lit.
 const QUEUE_ROOM: usize = 16;
 
@@ -156,7 +156,7 @@ const QUEUE_ROOM: usize = 16;
 ///
 /// Aligned to a cache line, and each attribute's row is whole lines long,
 /// so that a group of 16 (one 512-bit vector, the unit of
-/// [`Band::shade_queue`] and of `pairs.rs`'s appends) never straddles two
+/// [`Band::shade_queue`] and of `phong_span.rs`'s appends) never straddles two
 /// lines. Without the alignment the queue sat 48 bytes past a line in
 /// `Band`, every 512-bit load and store of it touched two, and the Zen 4
 /// EPYC lit the full-screen quad 3–5 % slower (BENCHMARKS.md, "The
@@ -169,7 +169,7 @@ struct Queue {
     len: usize,
     /// Whether the queue may hold fragments of triangles before the one
     /// being drawn, which must be lit before any of its pixels are lit in
-    /// place (`pairs.rs`, `Band::light_pairs`).
+    /// place (`phong_span.rs`, `Band::light_pairs`).
     older: bool,
 }
 

@@ -12,7 +12,7 @@
 //! Against f7b3cb7 on the Zen 5 EPYC, the meshes' 1080p Phong rows 1–1.5 %
 //! faster and the quad's 2–3 %, the same pictures (BENCHMARKS.md, "The
 //! queue's lighting in a function of its own"). Large triangles' runs of
-//! whole pairs skip the queue: `pairs.rs` lights them in place.
+//! whole pairs skip the queue: `phong_span.rs` lights them in place.
 
 use super::walk::{interpolate, Fill, Row};
 use super::Band;
@@ -93,7 +93,7 @@ impl Band {
     }
 
     /// Appends a pair of whole blocks from buffer index `at`, interpolated
-    /// in 16 lanes (`pairs.rs`), to the lighting queue, as
+    /// in 16 lanes (`phong_span.rs`), to the lighting queue, as
     /// [`Band::queue_lit`] would append the two blocks, but does not light
     /// it: the caller does once [`Band::queue_full`] says so. The queue must
     /// not be full.
