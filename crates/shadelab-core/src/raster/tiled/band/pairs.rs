@@ -82,10 +82,8 @@ impl<S: Simd> Pairs<S> {
     /// depth is less than `stored` (as a block's `z < stored`).
     #[inline(always)]
     pub(super) fn depth_test(&self, s: S, stored: &[f32; 16]) -> (S::F16, u32) {
-        let inside = self.column.gt(self.from) & self.to.gt(self.column);
-        let z = self.column.mul_add(self.dx[0], self.at_row[0]);
-        let pass = inside & s.f16_load(stored).gt(z);
-        (z, <S::F16 as Lanes>::mask_bits(pass))
+        let (span, depth) = ((self.from, self.to), (self.dx[0], self.at_row[0]));
+        depth_test_at(s, self.column, span, depth, stored)
     }
 
     /// How many pairs from the current one are whole, each lane inside
@@ -103,9 +101,7 @@ impl<S: Simd> Pairs<S> {
         let mut column = self.column;
         let depth = depth.as_chunks_mut::<16>().0;
         for (k, stored) in depth.iter_mut().enumerate() {
-            let inside = column.gt(from) & to.gt(column);
-            let z = column.mul_add(dz, z0);
-            let pass = <S::F16 as Lanes>::mask_bits(inside & s.f16_load(stored).gt(z));
+            let (z, pass) = depth_test_at(s, column, (from, to), (dz, z0), stored);
             if pass != 0xffff {
                 return (k, pass);
             }
@@ -210,6 +206,23 @@ impl<S: Simd> Pairs<S> {
     pub(super) fn step(&mut self) {
         self.column = self.column + self.sixteen;
     }
+}
+
+/// [`Pairs::depth_test`] of the pair at `column`, given the span `(from,
+/// to)` and the depth plane `(dz, z0)`: in values, so that
+/// [`Pairs::whole_run`] can keep them in locals.
+#[inline(always)]
+fn depth_test_at<S: Simd>(
+    s: S,
+    column: S::F16,
+    (from, to): (S::F16, S::F16),
+    (dz, z0): (S::F16, S::F16),
+    stored: &[f32; 16],
+) -> (S::F16, u32) {
+    let inside = column.gt(from) & to.gt(column);
+    let z = column.mul_add(dz, z0);
+    let pass = inside & s.f16_load(stored).gt(z);
+    (z, <S::F16 as Lanes>::mask_bits(pass))
 }
 
 /// A pair's first column `x`, and the span `left..right`.
