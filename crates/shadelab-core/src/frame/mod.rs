@@ -18,9 +18,11 @@
 //! which default to nothing.
 
 mod assemble;
+mod spatial;
 mod window;
 
 pub(crate) use self::assemble::Geometry;
+use self::spatial::SpatialScene;
 pub use self::window::to_window;
 
 use glam::Vec3;
@@ -102,6 +104,9 @@ pub struct Renderer {
     scanline: ScanlineRasterizer,
     /// The frame's face normals and window positions.
     geometry: Geometry,
+    /// A large mesh with its polygons in a spatial order, for the tiled
+    /// rasterizer (`spatial.rs`).
+    spatial: SpatialScene,
     /// The frame's lighting, rebuilt in place each frame.
     lighting: Lighting,
 }
@@ -123,6 +128,7 @@ impl Renderer {
         let tiled = TiledRasterizer::new(level);
         Renderer {
             geometry: Geometry::with_simd(tiled.simd()),
+            spatial: SpatialScene::with_simd(tiled.simd()),
             tiled,
             scanline: ScanlineRasterizer,
             lighting: Lighting {
@@ -143,6 +149,13 @@ impl Renderer {
     /// Renders `scene` into `image`, which is replaced by a new image when
     /// its size is not the requested one.
     ///
+    /// From the second frame in a row of a mesh of many polygons, the tiled
+    /// rasterizer draws a copy that lists them in a spatial order
+    /// (`spatial.rs`), faster to set up; a frame of it that meets a depth
+    /// tie is drawn again from `scene`, so the pixels are always `scene`'s.
+    /// Of the counts, only the fragments that passed the depth test on
+    /// their way (and so Phong's lighting evaluations) depend on the order.
+    ///
     /// # Errors
     /// [`RenderError`] when the options, camera, normals or lighting are invalid.
     pub fn render_into(
@@ -156,8 +169,20 @@ impl Renderer {
             *image = Image::filled(options.width, options.height, options.background);
         }
         set_lighting(&mut self.lighting, scene, options);
-        let mut frame = self.geometry.frame(scene, options);
         let lighting = &self.lighting;
+        if options.rasterizer == Rasterizer::Tiled {
+            if let Some((copy, geometry)) = self.spatial.update(scene) {
+                let mut frame = geometry.frame(copy, options);
+                let stats = self
+                    .tiled
+                    .render(&mut frame, copy, options, lighting, image);
+                if !self.tiled.met_ties() {
+                    return Ok(stats);
+                }
+                self.spatial.met_tie();
+            }
+        }
+        let mut frame = self.geometry.frame(scene, options);
         Ok(match options.rasterizer {
             Rasterizer::Tiled => self
                 .tiled
@@ -199,7 +224,8 @@ impl Renderer {
     /// Each part's statistics count the whole frame's polygons (and
     /// Gouraud's lighting evaluations, per vertex) and its own rows' pixels:
     /// `fragments_shaded`, `covered_pixels` and Phong's
-    /// `lighting_evaluations` of the parts add up to the frame's. So do
+    /// `lighting_evaluations` of the parts add up to the frame's (drawn in
+    /// the same order: see [`Renderer::render_into`] on a spatial one). So do
     /// flat's `lighting_evaluations`: a polygon's is counted by the part
     /// holding the top row of its pixels (by the first part for a polygon
     /// that needed clipping or is drawn as a back face), so that no part
@@ -255,8 +281,18 @@ impl Renderer {
             }
         }
         set_lighting(&mut self.lighting, scene, options);
-        let mut frame = self.geometry.frame(scene, options);
         let lighting = &self.lighting;
+        if let Some((copy, geometry)) = self.spatial.update(scene) {
+            let mut frame = geometry.frame(copy, options);
+            let [a, b, c] = &mut images;
+            let stats =
+                (self.tiled).render_methods(&mut frame, copy, options, lighting, &rows, [a, b, c]);
+            if !self.tiled.met_ties() {
+                return Ok((stats, rows));
+            }
+            self.spatial.met_tie();
+        }
+        let mut frame = self.geometry.frame(scene, options);
         let stats =
             (self.tiled).render_methods(&mut frame, scene, options, lighting, &rows, images);
         Ok((stats, rows))
@@ -354,10 +390,166 @@ mod tests {
     use crate::color::{Rgb, Rgb8};
     use crate::image::Image;
     use crate::light::{Light, LightKind, Material, NO_ATTENUATION};
+    use crate::mesh::{CornerNormals, Mesh};
     use crate::models::builtin_model;
     use crate::normals::{vertex_normals, NormalWeighting};
-    use crate::scene::{RenderOptions, Scene, Shading};
+    use crate::raster::Rasterize;
+    use crate::scene::{RenderOptions, RenderStats, Scene, Shading};
     use crate::simd::SimdLevel;
+
+    /// `mesh` with `normals`, seen from `camera`, lit by one point light.
+    fn lit_scene(mesh: Mesh, normals: CornerNormals, camera: Camera) -> Scene {
+        Scene {
+            mesh,
+            normals,
+            camera,
+            ambient: Rgb::new(0.1, 0.1, 0.1),
+            lights: vec![Light {
+                kind: LightKind::Point {
+                    position: Vec3::new(2.0, 3.0, 5.0),
+                },
+                color: Rgb::new(1.0, 0.95, 0.9),
+                intensity: 0.9,
+                attenuation: NO_ATTENUATION,
+            }],
+            material: Material {
+                ka: Rgb::new(0.9, 0.4, 0.3),
+                kd: Rgb::new(0.8, 0.45, 0.3),
+                ks: Rgb::new(0.6, 0.6, 0.6),
+                shininess: 12.0,
+            },
+        }
+    }
+
+    /// A square of `n × n` cells in the plane z = 0 drawn twice: first
+    /// split along one diagonal with normals facing +z, then along the
+    /// other with normals tilted. Every pixel it covers is a depth tie,
+    /// which the depth test "less" gives to the first copy; a spatial
+    /// order mixes the two.
+    fn plane_drawn_twice(n: u32) -> Scene {
+        let at = |i: u32, j: u32| j * (n + 1) + i;
+        let positions = (0..=n)
+            .flat_map(|j| (0..=n).map(move |i| (i, j)))
+            .map(|(i, j)| Vec3::new(i as f32 / n as f32 - 0.5, j as f32 / n as f32 - 0.5, 0.0))
+            .collect();
+        let mut triangles = Vec::new();
+        for second in [false, true] {
+            for (i, j) in (0..n).flat_map(|j| (0..n).map(move |i| (i, j))) {
+                let [a, b, c, d] = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                if second {
+                    triangles.extend([[a, b, d], [b, c, d]]);
+                } else {
+                    triangles.extend([[a, b, c], [a, c, d]]);
+                }
+            }
+        }
+        let half = triangles.len() / 2;
+        let corner = (0..triangles.len())
+            .flat_map(|k| [u32::from(k >= half); 3])
+            .collect();
+        let normals = vec![Vec3::Z, Vec3::new(0.5, 0.2, 0.8).normalize()];
+        let mesh = Mesh::from_polygons(positions, triangles).unwrap();
+        let camera = Camera::framing_sphere(Vec3::ZERO, 0.8, 40.0, 1.0).orbit(10.0, 5.0);
+        lit_scene(mesh, CornerNormals::new(normals, corner), camera)
+    }
+
+    /// A frame and the counts the order does not change.
+    type Drawn = (Image, (u64, u64, u64, u64, u64));
+
+    /// Frames of `scene` with each method, then with the three at once,
+    /// `frames` times in a row from one renderer.
+    fn frames_of(scene: &Scene, frames: usize, cull_backfaces: bool) -> Vec<Vec<Drawn>> {
+        let mut renderer = Renderer::new();
+        let counts = |s: RenderStats| {
+            let kept = (s.polygons, s.degenerate, s.culled, s.rasterized);
+            (kept.0, kept.1, kept.2, kept.3, s.covered_pixels)
+        };
+        (0..frames)
+            .map(|_| {
+                let options = RenderOptions {
+                    width: 160,
+                    height: 120,
+                    cull_backfaces,
+                    background: Rgb8::new(0, 40, 0),
+                    ..RenderOptions::default()
+                };
+                let mut frame = Vec::new();
+                for shading in Shading::ALL {
+                    let options = RenderOptions { shading, ..options };
+                    let mut image = Image::filled(1, 1, options.background);
+                    let stats = renderer.render_into(scene, &options, &mut image).unwrap();
+                    frame.push((image, counts(stats)));
+                }
+                let mut images: [Image; 3] =
+                    std::array::from_fn(|_| Image::filled(1, 1, Rgb8::new(0, 0, 0)));
+                let [a, b, c] = &mut images;
+                let stats = renderer.render_methods(scene, &options, [a, b, c]).unwrap();
+                frame.extend(images.into_iter().zip(stats.map(counts)));
+                frame
+            })
+            .collect()
+    }
+
+    /// A large mesh is drawn from its spatial copy from the second frame
+    /// on, with the first frame's pixels and counts (but for the fragments
+    /// that passed the depth test on their way): a torus seen at a slant,
+    /// its far side behind its near side, culling on and off.
+    #[test]
+    fn a_large_mesh_in_a_spatial_order_draws_the_same_frames() {
+        let mesh = builtin_model("torus", Some(256)).unwrap();
+        assert!(mesh.polygon_count() >= super::spatial::SPATIAL_POLYGONS);
+        let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
+        let (low, high) = mesh.bounds();
+        let camera =
+            Camera::framing_sphere((low + high) / 2.0, (high - low).length() / 2.0, 40.0, 1.5);
+        let scene = lit_scene(mesh, normals, camera.orbit(20.0, 35.0));
+        for cull in [true, false] {
+            let frames = frames_of(&scene, 3, cull);
+            for (k, (first, later)) in frames[0].iter().zip(&frames[2]).enumerate() {
+                assert!(first.0 == later.0, "cull {cull}: image {k} differs");
+                assert_eq!(first.1, later.1, "cull {cull}: image {k}'s counts");
+                assert!(first.1 .4 > 2_000, "{}", first.1 .4);
+            }
+        }
+        // The copy was drawn, with no tie.
+        let mut renderer = Renderer::new();
+        let options = RenderOptions::default();
+        let mut image = Image::filled(1, 1, options.background);
+        for _ in 0..2 {
+            renderer.render_into(&scene, &options, &mut image).unwrap();
+        }
+        assert!(renderer.spatial.has_copy() && !renderer.tiled.met_ties());
+    }
+
+    /// A frame of the spatial copy that meets depth ties is drawn again
+    /// from the scene, and must be: the copy's pixels differ. Later frames
+    /// of the mesh are drawn from the scene alone.
+    #[test]
+    fn a_spatial_copy_that_meets_a_tie_is_drawn_again_in_the_meshs_order() {
+        let scene = plane_drawn_twice(96);
+        assert!(scene.mesh.polygon_count() >= super::spatial::SPATIAL_POLYGONS);
+        let frames = frames_of(&scene, 3, true);
+        for later in &frames[1..] {
+            for (k, (first, later)) in frames[0].iter().zip(later).enumerate() {
+                assert!(first.0 == later.0, "image {k} differs");
+                assert_eq!(first.1, later.1, "image {k}'s counts");
+            }
+        }
+        // The copy alone, drawn as the renderer would on its second frame.
+        let options = RenderOptions::default();
+        let mut renderer = Renderer::new();
+        let mut image = Image::filled(1, 1, options.background);
+        renderer.render_into(&scene, &options, &mut image).unwrap();
+        let mut copy_image = image.clone();
+        let (copy, geometry) = renderer.spatial.update(&scene).unwrap();
+        let mut frame = geometry.frame(copy, &options);
+        let lighting = super::lighting(copy, &options);
+        (renderer.tiled).render(&mut frame, copy, &options, &lighting, &mut copy_image);
+        assert!(renderer.tiled.met_ties());
+        assert!(copy_image != image, "the order made no difference");
+        renderer.spatial.met_tie();
+        assert!(!renderer.spatial.has_copy());
+    }
 
     /// Bands that hand back the bins set up on the other thread (as where
     /// the two threads' cores are apart: every line of those bins flushed
@@ -371,26 +563,7 @@ mod tests {
         let (low, high) = mesh.bounds();
         let camera =
             Camera::framing_sphere((low + high) / 2.0, (high - low).length() / 2.0, 40.0, 1.5);
-        let scene = Scene {
-            mesh,
-            normals,
-            camera: camera.orbit(30.0, 20.0),
-            ambient: Rgb::new(0.1, 0.1, 0.1),
-            lights: vec![Light {
-                kind: LightKind::Point {
-                    position: Vec3::new(3.0, 4.0, 6.0),
-                },
-                color: Rgb::new(1.0, 0.95, 0.9),
-                intensity: 0.9,
-                attenuation: NO_ATTENUATION,
-            }],
-            material: Material {
-                ka: Rgb::new(0.9, 0.4, 0.3),
-                kd: Rgb::new(0.8, 0.45, 0.3),
-                ks: Rgb::new(0.6, 0.6, 0.6),
-                shininess: 12.0,
-            },
-        };
+        let scene = lit_scene(mesh, normals, camera.orbit(30.0, 20.0));
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(2)
             .build()

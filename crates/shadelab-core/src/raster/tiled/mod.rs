@@ -50,7 +50,11 @@
 //! * **Order is kept.** Chunks are set up in parallel, each binning into its
 //!   own per-band lists; a band walks the chunks in order, so triangles meet
 //!   the depth test in submission order, as with one thread, and the image
-//!   does not depend on the thread count.
+//!   does not depend on the thread count. Every depth test watches for a
+//!   tie, a fragment at the depth an earlier triangle stored
+//!   ([`TiledRasterizer::met_ties`]): only then could another order give
+//!   other pixels, which lets the frame draw a mesh in a spatial order of
+//!   its own (`frame/spatial.rs`) and fall back to the mesh's on a tie.
 //! * **Memory is read in streams.** Bins hold copies of their triangles, so
 //!   a band reads one contiguous run instead of chasing indices; each thread
 //!   draws its bands one after another in the same depth and colour
@@ -172,6 +176,8 @@ pub(crate) struct TiledRasterizer {
     /// band hands back the bins set up on a core apart from its own
     /// (`placement.rs`).
     placement: Placement,
+    /// Whether the last frame's depth test met a tie ([`Band::ties`]).
+    ties: bool,
 }
 
 /// A setup job's work: its chunk.
@@ -189,9 +195,17 @@ impl Borrows for BandRows {
     type At<'a> = [&'a mut [Rgb8]; 3];
 }
 
-/// A band's counts: fragments shaded, pixels covered.
-fn add_counts(a: (u64, u64), b: (u64, u64)) -> (u64, u64) {
-    (a.0 + b.0, a.1 + b.1)
+/// What a band tells of its walk: fragments shaded, pixels covered, and
+/// whether a depth test met a tie ([`Band::ties`]).
+type Drawn = (u64, u64, bool);
+
+fn add_drawn(a: Drawn, b: Drawn) -> Drawn {
+    (a.0 + b.0, a.1 + b.1, a.2 | b.2)
+}
+
+/// What a band drew: see [`Drawn`].
+fn drawn(band: &Band) -> Drawn {
+    (band.fragments, band.covered, band.ties())
 }
 
 /// Where a band's result goes.
@@ -421,11 +435,21 @@ impl TiledRasterizer {
             setup_jobs: Jobs::default(),
             band_jobs: Jobs::default(),
             placement: Placement::default(),
+            ties: false,
         }
     }
 
     pub fn simd(&self) -> SimdLevel {
         self.simd
+    }
+
+    /// Whether the last frame drawn ([`Rasterize::render`],
+    /// [`TiledRasterizer::render_methods`]) had a pixel where a fragment met
+    /// the depth another triangle had stored: which of the two the test
+    /// "less" kept depends on the order they were drawn in. A frame
+    /// without one has the same pixels in any order (see `Band::ties`).
+    pub fn met_ties(&self) -> bool {
+        self.ties
     }
 
     /// As if the threads' cores had been measured: thread `k`'s apart from
@@ -475,7 +499,7 @@ impl Rasterize for TiledRasterizer {
                     None => band_pass(simd, band, index, bins, phong, options, output),
                 },
             }
-            (band.fragments, band.covered)
+            drawn(band)
         };
         // Each band its own job, the bands shared by cost (`order.rs`).
         let bands = image.pixels_mut().chunks_mut(width * BAND_ROWS as usize);
@@ -483,8 +507,9 @@ impl Rasterize for TiledRasterizer {
             let cost = band_cost(chunks, index, size, method);
             Job::new(index, cost, [rows, Default::default(), Default::default()])
         }));
-        let (fragments, covered) = by_cost(&mut jobs, &draw, &add_counts);
+        let (fragments, covered, ties) = by_cost(&mut jobs, &draw, &add_drawn);
         self.band_jobs.keep(jobs);
+        self.ties = ties;
         stats.fragments_shaded += fragments;
         stats.covered_pixels += covered;
         if options.shading == Shading::Phong {
@@ -575,7 +600,7 @@ impl TiledRasterizer {
                 Some(one) => band_pass(simd, band, index, bins, &AllMethods(one), options, output),
                 None => band_pass(simd, band, index, bins, &AllMethods(phong), options, output),
             }
-            (band.fragments, band.covered)
+            drawn(band)
         };
         // Each band its own job, shared by cost, as in `render`.
         let band_len = width * BAND_ROWS as usize;
@@ -588,8 +613,9 @@ impl TiledRasterizer {
             let index = first_band + k;
             Job::new(index, band_cost(chunks, index, size, None), [f, g, p])
         }));
-        let (fragments, covered) = by_cost(&mut jobs, &draw, &add_counts);
+        let (fragments, covered, ties) = by_cost(&mut jobs, &draw, &add_drawn);
         self.band_jobs.keep(jobs);
+        self.ties = ties;
         let (flat_evaluations, vertex_evaluations) = self.evaluations;
         std::array::from_fn(|k| {
             let lighting_evaluations = match k {

@@ -140,6 +140,9 @@ pub(crate) struct Band {
     pub fragments: u64,
     /// Pixels drawn this frame.
     pub covered: u64,
+    /// Whether a fragment met a depth equal to one a fragment of another
+    /// triangle stored this frame ([`Band::ties`]).
+    ties: bool,
 }
 
 /// The most queued fragments a deferred shader lights at once: the
@@ -283,6 +286,7 @@ impl Band {
         let len = self.stride * rows as usize;
         self.fragments = 0;
         self.covered = 0;
+        self.ties = false;
         self.queue.len = 0;
         self.pending.len = 0;
         self.stamp_clean = false;
@@ -314,6 +318,15 @@ impl Band {
                 self.counts.resize(len, 0);
             }
         }
+    }
+
+    /// Whether a fragment of this frame met a depth equal to the one stored
+    /// at its pixel by an earlier triangle: the depth test "less" then
+    /// kept the first drawn, so the pixel may depend on the order the
+    /// triangles were drawn in. Without a tie it does not: at every pixel
+    /// one fragment is nearer than all others, whatever the order.
+    pub fn ties(&self) -> bool {
+        self.ties
     }
 
     /// Copies the finished band's `colors` into its rows of the image,

@@ -63,6 +63,9 @@ impl Band {
             // wholly hidden): its blocks one by one, which redo the test.
             if pass != 0 {
                 fragments += self.queue_blocks(s, f, row, row_start, (x, left, right), 2);
+            } else {
+                let at = row_start + x as usize;
+                pairs.note_ties(s, f, (&self.depth[at..at + 16]).try_into().unwrap());
             }
             pairs.step();
             x += 16;

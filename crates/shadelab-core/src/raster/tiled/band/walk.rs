@@ -2,6 +2,8 @@
 //! 8 pixels or in spans, the depth test, and each block's colours (flat,
 //! Gouraud) or its place in Phong's queue (`queue.rs`).
 
+use std::cell::Cell;
+
 use super::gather::gathers;
 use super::pairs::{fill_span, inside};
 use super::{Band, Pass};
@@ -47,6 +49,7 @@ impl Band {
             origin[j] = planes[j].at_origin;
             dy[j] = planes[j].dy;
         }
+        let ties = Cell::new(false);
         let fill = Fill {
             t,
             color,
@@ -59,6 +62,7 @@ impl Band {
             origin: Vf::load(s, &origin),
             dy: Vf::load(s, &dy),
             lanes: Vf::lanes(s),
+            ties: &ties,
         };
         // Nearly every triangle is drawn once per pixel in a shading pass:
         // its blocks skip the two tests for the other cases. The others
@@ -86,6 +90,7 @@ impl Band {
         if Sh::DEFERRED && self.pending.len > 0 {
             self.interpolate_pending(s, &fill);
         }
+        self.ties |= ties.get();
     }
 
     /// Blocks of 8 pixels along each row of the bounding box, with the edge
@@ -401,6 +406,12 @@ pub(super) struct Fill<'a, S: Simd, Sh: Shader> {
     pub(super) dy: Vf<S>,
     /// 0, 1, … 7.
     pub(super) lanes: Vf<S>,
+    /// Whether a depth test met a tie ([`Band::ties`]). Set, never cleared,
+    /// and only when there is one: no store per block. A reference, so that
+    /// `Fill` holds no cell of its own: a `&Fill` then tells the compiler
+    /// that no store changes it, and the walk's loops keep its planes in
+    /// registers (with the cell inside, a Gouraud quad took 1.14× longer).
+    pub(super) ties: &'a Cell<bool>,
 }
 
 impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
@@ -481,9 +492,16 @@ pub(super) fn depth_test<S: Simd, Sh: Shader>(
 ) -> Vi<S> {
     let depth = x.mul_add(f.dx[0], Vf::splat(s, row.values[0]));
     let stored = Vf::load(s, depth_slot);
-    let pass = inside & depth.lt(stored);
+    let nearer = depth.lt(stored);
+    let pass = inside & nearer;
     if pass.mask_bits() != 0 {
         Vf::select(pass, depth, stored).store(depth_slot);
+    }
+    // A tie: neither nearer nor farther than a depth a fragment stored
+    // (below 1, the cleared depth, which no fragment stores).
+    let written = inside & stored.lt(Vf::splat(s, 1.0));
+    if written.mask_bits() & !(nearer | stored.lt(depth)).mask_bits() != 0 {
+        f.ties.set(true);
     }
     pass
 }
