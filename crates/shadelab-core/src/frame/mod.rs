@@ -171,15 +171,17 @@ impl Renderer {
         set_lighting(&mut self.lighting, scene, options);
         let lighting = &self.lighting;
         if options.rasterizer == Rasterizer::Tiled {
-            if let Some((copy, geometry)) = self.spatial.update(scene) {
-                let mut frame = geometry.frame(copy, options);
-                let stats = self
-                    .tiled
-                    .render(&mut frame, copy, options, lighting, image);
-                if !self.tiled.met_ties() {
-                    return Ok(stats);
-                }
-                self.spatial.met_tie();
+            let drawn = draw_spatial(
+                &mut self.spatial,
+                &mut self.tiled,
+                scene,
+                |tiled, copy, geometry| {
+                    let mut frame = geometry.frame(copy, options);
+                    tiled.render(&mut frame, copy, options, lighting, image)
+                },
+            );
+            if let Some(stats) = drawn {
+                return Ok(stats);
             }
         }
         let mut frame = self.geometry.frame(scene, options);
@@ -282,15 +284,18 @@ impl Renderer {
         }
         set_lighting(&mut self.lighting, scene, options);
         let lighting = &self.lighting;
-        if let Some((copy, geometry)) = self.spatial.update(scene) {
-            let mut frame = geometry.frame(copy, options);
-            let [a, b, c] = &mut images;
-            let stats =
-                (self.tiled).render_methods(&mut frame, copy, options, lighting, &rows, [a, b, c]);
-            if !self.tiled.met_ties() {
-                return Ok((stats, rows));
-            }
-            self.spatial.met_tie();
+        let drawn = draw_spatial(
+            &mut self.spatial,
+            &mut self.tiled,
+            scene,
+            |tiled, copy, geometry| {
+                let mut frame = geometry.frame(copy, options);
+                let [a, b, c] = &mut images;
+                tiled.render_methods(&mut frame, copy, options, lighting, &rows, [a, b, c])
+            },
+        );
+        if let Some(stats) = drawn {
+            return Ok((stats, rows));
         }
         let mut frame = self.geometry.frame(scene, options);
         let stats =
@@ -379,6 +384,29 @@ pub(crate) fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), Ren
         }
     }
     Ok(())
+}
+
+/// Draws `scene`'s copy in a spatial order (`spatial.rs`), if it has one,
+/// with `draw` (given the rasterizer, the copy and the copy's geometry),
+/// the depth tests watching for ties. What `draw` returned; `None` when
+/// there is no copy, or when the frame met a tie: its pixels may differ
+/// from the scene's, so the caller draws the scene, and does from now on
+/// for this mesh.
+fn draw_spatial<T>(
+    spatial: &mut SpatialScene,
+    tiled: &mut TiledRasterizer,
+    scene: &Scene,
+    draw: impl FnOnce(&mut TiledRasterizer, &Scene, &mut Geometry) -> T,
+) -> Option<T> {
+    let (copy, geometry) = spatial.update(scene)?;
+    tiled.watch_ties(true);
+    let drawn = draw(tiled, copy, geometry);
+    tiled.watch_ties(false);
+    if !tiled.met_ties() {
+        return Some(drawn);
+    }
+    spatial.met_tie();
+    None
 }
 
 #[cfg(test)]
@@ -544,9 +572,14 @@ mod tests {
         let (copy, geometry) = renderer.spatial.update(&scene).unwrap();
         let mut frame = geometry.frame(copy, &options);
         let lighting = super::lighting(copy, &options);
+        // Unwatched, as every frame of a scene in its own order: no tie seen.
+        (renderer.tiled).render(&mut frame, copy, &options, &lighting, &mut copy_image);
+        assert!(!renderer.tiled.met_ties());
+        assert!(copy_image != image, "the order made no difference");
+        renderer.tiled.watch_ties(true);
+        let mut frame = geometry.frame(copy, &options);
         (renderer.tiled).render(&mut frame, copy, &options, &lighting, &mut copy_image);
         assert!(renderer.tiled.met_ties());
-        assert!(copy_image != image, "the order made no difference");
         renderer.spatial.met_tie();
         assert!(!renderer.spatial.has_copy());
     }

@@ -25,8 +25,9 @@
 //!
 //! What the order changes is which of two fragments at the same depth the
 //! depth test keeps ("less" keeps the first drawn). The tiled rasterizer
-//! watches for such ties (`TiledRasterizer::met_ties`),
-//! and the frame that met one is drawn again from the scene itself
+//! watches for such ties while it draws the copy
+//! (`TiledRasterizer::watch_ties`, `TiledRasterizer::met_ties`), and the
+//! frame that met one is drawn again from the scene itself
 //! (`frame/mod.rs`): the pixels are always the file order's. So are the
 //! counts, but for the fragments that passed the depth test on their way
 //! (Phong's evaluations among them), which depend on the order by nature.

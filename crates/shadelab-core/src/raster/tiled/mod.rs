@@ -50,11 +50,14 @@
 //! * **Order is kept.** Chunks are set up in parallel, each binning into its
 //!   own per-band lists; a band walks the chunks in order, so triangles meet
 //!   the depth test in submission order, as with one thread, and the image
-//!   does not depend on the thread count. Every depth test watches for a
-//!   tie, a fragment at the depth an earlier triangle stored
+//!   does not depend on the thread count. On request
+//!   ([`TiledRasterizer::watch_ties`]) the depth tests watch for a tie, a
+//!   fragment at the depth an earlier triangle stored
 //!   ([`TiledRasterizer::met_ties`]): only then could another order give
 //!   other pixels, which lets the frame draw a mesh in a spatial order of
 //!   its own (`frame/spatial.rs`) and fall back to the mesh's on a tie.
+//!   Frames in the scene's own order do not watch: the look costs the
+//!   fill of large triangles.
 //! * **Memory is read in streams.** Bins hold copies of their triangles, so
 //!   a band reads one contiguous run instead of chasing indices; each thread
 //!   draws its bands one after another in the same depth and colour
@@ -178,6 +181,8 @@ pub(crate) struct TiledRasterizer {
     placement: Placement,
     /// Whether the last frame's depth test met a tie ([`Band::ties`]).
     ties: bool,
+    /// Whether the depth tests look for ties ([`TiledRasterizer::watch_ties`]).
+    watch_ties: bool,
 }
 
 /// A setup job's work: its chunk.
@@ -436,6 +441,7 @@ impl TiledRasterizer {
             band_jobs: Jobs::default(),
             placement: Placement::default(),
             ties: false,
+            watch_ties: false,
         }
     }
 
@@ -450,6 +456,14 @@ impl TiledRasterizer {
     /// without one has the same pixels in any order (see `Band::ties`).
     pub fn met_ties(&self) -> bool {
         self.ties
+    }
+
+    /// Whether the frames drawn from now on look for ties
+    /// ([`TiledRasterizer::met_ties`], false when they do not): only a
+    /// frame drawn in another order than its scene's needs to, and the look
+    /// has a cost in the fill ([`Band::watch_ties`]).
+    pub fn watch_ties(&mut self, on: bool) {
+        self.watch_ties = on;
     }
 
     /// As if the threads' cores had been measured: thread `k`'s apart from
@@ -481,9 +495,11 @@ impl Rasterize for TiledRasterizer {
         let stream = streams(options.width, options.height, scene.mesh.polygon_count());
         let phong = &self.phong;
         let (scratch, placement) = (&self.bands, &self.placement);
+        let watch_ties = self.watch_ties;
         let draw = |index: usize, [rows, ..]: [&mut [Rgb8]; 3]| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
+            band.watch_ties(watch_ties);
             let bins = Bins::here(chunks, placement);
             let output = Output::Image {
                 rows,
@@ -538,6 +554,7 @@ impl Rasterize for TiledRasterizer {
             .enumerate()
             .for_each(|(index, out)| {
                 let mut band = scratch_band(scratch);
+                band.watch_ties(false);
                 let output = Output::Counts(out);
                 let bins = Bins::here(chunks, placement);
                 band_pass(simd, &mut band, index, bins, &FlatShader, options, output);
@@ -584,12 +601,14 @@ impl TiledRasterizer {
         let stream = streams(options.width, options.height, scene.mesh.polygon_count());
         let phong = &self.phong;
         let (scratch, placement) = (&self.bands, &self.placement);
+        let watch_ties = self.watch_ties;
         let [flat, gouraud, phong_image] = images;
         // One walk of each triangle: the three methods share coverage and
         // depth, so the fragments and pixels drawn are the same for each.
         let draw = |index: usize, rows: [&mut [Rgb8]; 3]| {
             let mut guard = scratch_band(scratch);
             let band = &mut *guard;
+            band.watch_ties(watch_ties);
             let bins = Bins::here(chunks, placement);
             let output = Output::Methods {
                 rows,

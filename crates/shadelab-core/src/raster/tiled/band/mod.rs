@@ -143,6 +143,8 @@ pub(crate) struct Band {
     /// Whether a fragment met a depth equal to one a fragment of another
     /// triangle stored this frame ([`Band::ties`]).
     ties: bool,
+    /// Whether the depth tests look for ties at all ([`Band::watch_ties`]).
+    watch_ties: bool,
 }
 
 /// The most queued fragments a deferred shader lights at once: the
@@ -324,9 +326,20 @@ impl Band {
     /// at its pixel by an earlier triangle: the depth test "less" then
     /// kept the first drawn, so the pixel may depend on the order the
     /// triangles were drawn in. Without a tie it does not: at every pixel
-    /// one fragment is nearer than all others, whatever the order.
+    /// one fragment is nearer than all others, whatever the order. (A
+    /// fragment at exactly the cleared depth, 1, counts too: never drawn,
+    /// a false alarm, but no constant for the loops to keep.)
     pub fn ties(&self) -> bool {
         self.ties
+    }
+
+    /// Whether this band's depth tests look for ties ([`Band::ties`]; if
+    /// not, it stays false). Only a frame drawn in another order than the
+    /// scene's needs to know, and the look cost a full-screen Gouraud
+    /// triangle's fill 5–17 % when every frame watched (BENCHMARKS.md,
+    /// "Ties watched only where they matter"): every other frame skips it.
+    pub fn watch_ties(&mut self, on: bool) {
+        self.watch_ties = on;
     }
 
     /// Copies the finished band's `colors` into its rows of the image,

@@ -89,15 +89,15 @@ impl<S: Simd> Pairs<S> {
     /// Marks in `f` a tie ([`Band::ties`](super::Band::ties)) at the
     /// current pair, whose lanes all failed [`Pairs::depth_test`] (their
     /// blocks are not tested again): a lane inside the span whose depth
-    /// equals a stored one below 1. As the blocks' `depth_test` does.
+    /// equals the stored one. As the blocks' `depth_test` does.
     #[inline(always)]
     pub(super) fn note_ties<Sh: Shader>(&self, s: S, f: &Fill<'_, S, Sh>, stored: &[f32; 16]) {
         let bits = <S::F16 as Lanes>::mask_bits;
         let (column, from, to) = (self.column, self.from, self.to);
         let z = column.mul_add(self.dx[0], self.at_row[0]);
         let stored = s.f16_load(stored);
-        let written = column.gt(from) & to.gt(column) & column.splat_like(1.0).gt(stored);
-        if bits(written) & !(bits(stored.gt(z)) | bits(z.gt(stored))) != 0 {
+        let inside = column.gt(from) & to.gt(column);
+        if bits(inside) & !(bits(stored.gt(z)) | bits(z.gt(stored))) != 0 {
             f.ties.set(true);
         }
     }
@@ -330,7 +330,7 @@ fn whole_pairs<S: Simd, Sh: Shader, const BELOW: bool, const ROW_W: bool>(
             };
             f.shader.shade_lanes::<_, BELOW>(f.color, &attrs, color);
             fragments += 16;
-        } else {
+        } else if pass != 0 || f.watch_ties {
             // Not whole: block by block, which tests again (and sees the
             // ties of a pair hidden whole, `depth_test`).
             fragments += blocks(s, f, row, (x, left, right), depth, color);

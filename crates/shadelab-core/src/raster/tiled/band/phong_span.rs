@@ -63,7 +63,7 @@ impl Band {
             // wholly hidden): its blocks one by one, which redo the test.
             if pass != 0 {
                 fragments += self.queue_blocks(s, f, row, row_start, (x, left, right), 2);
-            } else {
+            } else if f.watch_ties {
                 let at = row_start + x as usize;
                 pairs.note_ties(s, f, (&self.depth[at..at + 16]).try_into().unwrap());
             }

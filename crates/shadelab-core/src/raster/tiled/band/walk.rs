@@ -63,6 +63,7 @@ impl Band {
             dy: Vf::load(s, &dy),
             lanes: Vf::lanes(s),
             ties: &ties,
+            watch_ties: self.watch_ties,
         };
         // Nearly every triangle is drawn once per pixel in a shading pass:
         // its blocks skip the two tests for the other cases. The others
@@ -412,6 +413,8 @@ pub(super) struct Fill<'a, S: Simd, Sh: Shader> {
     /// that no store changes it, and the walk's loops keep its planes in
     /// registers (with the cell inside, a Gouraud quad took 1.14× longer).
     pub(super) ties: &'a Cell<bool>,
+    /// Whether to look for ties at all ([`Band::watch_ties`]).
+    pub(super) watch_ties: bool,
 }
 
 impl<S: Simd, Sh: Shader> Fill<'_, S, Sh> {
@@ -497,10 +500,13 @@ pub(super) fn depth_test<S: Simd, Sh: Shader>(
     if pass.mask_bits() != 0 {
         Vf::select(pass, depth, stored).store(depth_slot);
     }
-    // A tie: neither nearer nor farther than a depth a fragment stored
-    // (below 1, the cleared depth, which no fragment stores).
-    let written = inside & stored.lt(Vf::splat(s, 1.0));
-    if written.mask_bits() & !(nearer | stored.lt(depth)).mask_bits() != 0 {
+    // A tie: neither nearer nor farther than the depth stored. A fragment
+    // at exactly 1, the cleared depth, counts too, though no order draws
+    // it: a false alarm (the frame is drawn again in the scene's order),
+    // and no constant 1 kept in a vector register, which cost the span
+    // loops of frames that do not watch (BENCHMARKS.md, "Ties watched only
+    // where they matter").
+    if f.watch_ties && (inside.mask_bits() & !(nearer | stored.lt(depth)).mask_bits()) != 0 {
         f.ties.set(true);
     }
     pass
