@@ -227,6 +227,46 @@ impl Mesh {
             corners.extend_from_slice(polygon);
             offsets.push(corners.len() as u32);
         }
+        Mesh::from_parts(positions, corners, offsets)
+    }
+
+    /// Builds a mesh from positions, every polygon's vertex indices one
+    /// polygon after another, and where each polygon starts in them
+    /// (`offsets`, one more than the polygons, from 0 to `corners.len()`),
+    /// as [`Mesh::corners`] and [`Mesh::corner_range`] give them back: a
+    /// mesh's own arrays reordered, with no polygon copied alone.
+    ///
+    /// # Errors
+    /// As [`Mesh::from_polygons`].
+    ///
+    /// # Panics
+    /// If `offsets` do not run from 0 to `corners.len()` in order: the
+    /// caller's arrays are not a mesh's.
+    pub(crate) fn from_parts(
+        positions: Vec<Vec3>,
+        corners: Vec<u32>,
+        offsets: Vec<u32>,
+    ) -> Result<Mesh, MeshError> {
+        if positions.len() > Self::MAX_VERTICES {
+            return Err(MeshError::TooManyVertices(positions.len()));
+        }
+        if corners.len() > Self::MAX_CORNERS {
+            return Err(MeshError::TooLarge(corners.len()));
+        }
+        assert!(
+            offsets.first() == Some(&0)
+                && offsets.last().map(|&end| end as usize) == Some(corners.len())
+                && offsets.windows(2).all(|w| w[0] <= w[1]),
+            "offsets that do not run from 0 to the {} corners in order",
+            corners.len()
+        );
+        let triangles: usize = offsets
+            .windows(2)
+            .map(|w| (w[1] - w[0]).saturating_sub(2) as usize)
+            .sum();
+        if triangles > Self::MAX_TRIANGLES {
+            return Err(MeshError::TooManyTriangles(triangles));
+        }
         let mesh = Mesh {
             positions,
             corners,

@@ -117,6 +117,29 @@ impl Geometry {
         }
     }
 
+    /// The face normals and centroids of `mesh`, brought up to date.
+    pub(crate) fn faces_of(&mut self, mesh: &Mesh) -> (&[Option<Vec3>], &[Vec3]) {
+        self.update_faces(mesh);
+        (&self.faces, &self.centroids)
+    }
+
+    /// Takes `faces` and `centroids` as `mesh`'s face normals and
+    /// centroids, which they must be, bit for bit (what [`face_geometry`]
+    /// gives of it): a mesh whose polygons are another's reordered, each
+    /// with the same corners in the same order, has that mesh's numbers
+    /// reordered, and needs not compute them again.
+    pub(crate) fn adopt_faces(
+        &mut self,
+        mesh: &Mesh,
+        faces: Vec<Option<Vec3>>,
+        centroids: Vec<Vec3>,
+    ) {
+        debug_assert_eq!(faces.len(), mesh.polygon_count());
+        debug_assert_eq!(centroids.len(), mesh.polygon_count());
+        self.key_geometry = mesh.geometry_id();
+        (self.faces, self.centroids) = (faces, centroids);
+    }
+
     fn update_faces(&mut self, mesh: &Mesh) {
         if self.key_geometry == mesh.geometry_id() {
             return;

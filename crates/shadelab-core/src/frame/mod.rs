@@ -174,7 +174,7 @@ impl Renderer {
             let drawn = draw_spatial(
                 &mut self.spatial,
                 &mut self.tiled,
-                scene,
+                (scene, &mut self.geometry),
                 |tiled, copy, geometry| {
                     let mut frame = geometry.frame(copy, options);
                     tiled.render(&mut frame, copy, options, lighting, image)
@@ -287,7 +287,7 @@ impl Renderer {
         let drawn = draw_spatial(
             &mut self.spatial,
             &mut self.tiled,
-            scene,
+            (scene, &mut self.geometry),
             |tiled, copy, geometry| {
                 let mut frame = geometry.frame(copy, options);
                 let [a, b, c] = &mut images;
@@ -386,8 +386,10 @@ pub(crate) fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), Ren
     Ok(())
 }
 
-/// Draws `scene`'s copy in a spatial order (`spatial.rs`), if it has one,
-/// with `draw` (given the rasterizer, the copy and the copy's geometry),
+/// Draws `scene`'s copy in a spatial order (`spatial.rs`), if it has one
+/// (made from `scene` and its own geometry, whose face normals and
+/// centroids the copy takes over), with `draw` (given the rasterizer, the
+/// copy and the copy's geometry),
 /// the depth tests watching for ties. What `draw` returned; `None` when
 /// there is no copy, or when the frame met a tie: its pixels may differ
 /// from the scene's, so the caller draws the scene, and does from now on
@@ -395,10 +397,10 @@ pub(crate) fn validate(scene: &Scene, options: &RenderOptions) -> Result<(), Ren
 fn draw_spatial<T>(
     spatial: &mut SpatialScene,
     tiled: &mut TiledRasterizer,
-    scene: &Scene,
+    (scene, geometry): (&Scene, &mut Geometry),
     draw: impl FnOnce(&mut TiledRasterizer, &Scene, &mut Geometry) -> T,
 ) -> Option<T> {
-    let (copy, geometry) = spatial.update(scene)?;
+    let (copy, geometry) = spatial.update(scene, geometry)?;
     tiled.watch_ties(true);
     let drawn = draw(tiled, copy, geometry);
     tiled.watch_ties(false);
@@ -426,7 +428,7 @@ mod tests {
     use crate::simd::SimdLevel;
 
     /// `mesh` with `normals`, seen from `camera`, lit by one point light.
-    fn lit_scene(mesh: Mesh, normals: CornerNormals, camera: Camera) -> Scene {
+    pub(super) fn lit_scene(mesh: Mesh, normals: CornerNormals, camera: Camera) -> Scene {
         Scene {
             mesh,
             normals,
@@ -569,7 +571,9 @@ mod tests {
         let mut image = Image::filled(1, 1, options.background);
         renderer.render_into(&scene, &options, &mut image).unwrap();
         let mut copy_image = image.clone();
-        let (copy, geometry) = renderer.spatial.update(&scene).unwrap();
+        let (copy, geometry) = (renderer.spatial)
+            .update(&scene, &mut renderer.geometry)
+            .unwrap();
         let mut frame = geometry.frame(copy, &options);
         let lighting = super::lighting(copy, &options);
         // Unwatched, as every frame of a scene in its own order: no tie seen.

@@ -40,7 +40,6 @@ use glam::Vec3;
 
 use super::Geometry;
 use crate::mesh::{CornerNormals, Mesh};
-use crate::normals::face_geometry;
 use crate::scene::Scene;
 use crate::simd::SimdLevel;
 
@@ -89,8 +88,13 @@ impl SpatialScene {
     /// geometry, where the tiled rasterizer should draw that: `None` for a
     /// mesh of fewer than [`SPATIAL_POLYGONS`] or more than
     /// [`SPATIAL_MAX_POLYGONS`] polygons, on the first frame of a mesh, and
-    /// for a mesh a frame of which met a tie.
-    pub(crate) fn update(&mut self, scene: &Scene) -> Option<(&Scene, &mut Geometry)> {
+    /// for a mesh a frame of which met a tie. `geometry` is the scene's own
+    /// (its face normals and centroids, which the copy reorders).
+    pub(crate) fn update(
+        &mut self,
+        scene: &Scene,
+        geometry: &mut Geometry,
+    ) -> Option<(&Scene, &mut Geometry)> {
         let count = scene.mesh.polygon_count();
         if !(SPATIAL_POLYGONS..=SPATIAL_MAX_POLYGONS).contains(&count) {
             return None;
@@ -105,7 +109,10 @@ impl SpatialScene {
             }
             self.key = key;
             self.tied = false;
-            self.copy = spatial_copy(scene);
+            let (faces, centroids) = geometry.faces_of(&scene.mesh);
+            let (copy, faces, centroids) = spatial_copy(scene, faces, centroids)?;
+            self.geometry.adopt_faces(&copy.mesh, faces, centroids);
+            self.copy = Some(copy);
         }
         if self.tied {
             return None;
@@ -137,53 +144,60 @@ impl SpatialScene {
 /// `scene` with its mesh's polygons in [`spatial_order`], each with its
 /// corners in the same order and the same normals, and the positions
 /// numbered in the order those polygons first use them (so that near
-/// polygons read near positions; the ones no polygon uses come last).
-/// `None` if it cannot be made (it always can of a valid scene).
-fn spatial_copy(scene: &Scene) -> Option<Scene> {
+/// polygons read near positions; the ones no polygon uses come last); with
+/// the copy's face normals and centroids, `faces` and `centroids` (the
+/// mesh's) reordered. `None` if it cannot be made (it always can of a
+/// valid scene).
+///
+/// Made on a frame of the viewer, which waits for it: every array is
+/// allocated once at its size, and nothing is computed again that the
+/// scene's own frames have (the face normals and centroids).
+fn spatial_copy(
+    scene: &Scene,
+    faces: &[Option<Vec3>],
+    centroids: &[Vec3],
+) -> Option<(Scene, Vec<Option<Vec3>>, Vec<Vec3>)> {
     let mesh = &scene.mesh;
-    let (mut faces, mut centroids) = (Vec::new(), Vec::new());
-    face_geometry(mesh, &mut faces, &mut centroids);
     let mut order = Vec::new();
-    spatial_order(&centroids, &mut order);
+    spatial_order(centroids, &mut order);
     let old = mesh.positions();
     let mut renumbered = vec![u32::MAX; old.len()];
     let mut positions = Vec::with_capacity(old.len());
-    let mut number = |v: u32| {
-        let new = &mut renumbered[v as usize];
-        if *new == u32::MAX {
-            *new = positions.len() as u32;
-            positions.push(old[v as usize]);
+    let mut corners = Vec::with_capacity(mesh.corners().len());
+    let mut offsets = Vec::with_capacity(order.len() + 1);
+    offsets.push(0);
+    for &f in &order {
+        for &v in mesh.polygon(f as usize) {
+            let new = &mut renumbered[v as usize];
+            if *new == u32::MAX {
+                *new = positions.len() as u32;
+                positions.push(old[v as usize]);
+            }
+            corners.push(*new);
         }
-        *new
-    };
-    let polygons: Vec<Vec<u32>> = order
-        .iter()
-        .map(|&f| {
-            mesh.polygon(f as usize)
-                .iter()
-                .map(|&v| number(v))
-                .collect()
-        })
-        .collect();
+        offsets.push(corners.len() as u32);
+    }
     for (v, &new) in renumbered.iter().enumerate() {
         if new == u32::MAX {
             positions.push(old[v]);
         }
     }
-    let copy = Mesh::from_polygons(positions, polygons).ok()?;
-    let corner = order
-        .iter()
-        .flat_map(|&f| &scene.normals.corner()[mesh.corner_range(f as usize)])
-        .copied()
-        .collect();
-    Some(Scene {
+    let copy = Mesh::from_parts(positions, corners, offsets).ok()?;
+    let mut corner = Vec::with_capacity(copy.corners().len());
+    for &f in &order {
+        corner.extend_from_slice(&scene.normals.corner()[mesh.corner_range(f as usize)]);
+    }
+    let faces = order.iter().map(|&f| faces[f as usize]).collect();
+    let centroids = order.iter().map(|&f| centroids[f as usize]).collect();
+    let scene = Scene {
         mesh: copy,
         normals: CornerNormals::new(scene.normals.normals.clone(), corner),
         camera: scene.camera,
         ambient: scene.ambient,
         lights: scene.lights.clone(),
         material: scene.material,
-    })
+    };
+    Some((scene, faces, centroids))
 }
 
 /// Bits of the Morton code per axis.
@@ -239,14 +253,22 @@ pub(crate) fn spatial_order(centroids: &[Vec3], order: &mut Vec<u32>) {
     }
 }
 
-/// The low [`BITS`] bits of `v` moved to every third bit.
+/// The low [`BITS`] bits of `v` moved to every third bit (bit `b` to bit
+/// `3·b`): each step moves the upper half of every group of bits up by
+/// twice its width.
 fn spread(v: u32) -> u32 {
-    (0..BITS).fold(0, |m, b| m | ((v >> b) & 1) << (3 * b))
+    let x = v & 0x3ff;
+    let x = (x | x << 16) & 0x0300_00ff;
+    let x = (x | x << 8) & 0x0300_f00f;
+    let x = (x | x << 4) & 0x030c_30c3;
+    (x | x << 2) & 0x0924_9249
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::camera::Camera;
+    use crate::normals::{face_geometry, vertex_normals, NormalWeighting};
 
     #[test]
     fn small_meshes_keep_their_order() {
@@ -300,5 +322,60 @@ mod tests {
     fn spread_interleaves() {
         assert_eq!(spread(0b11), 0b1001);
         assert_eq!(spread(1023), 0o1111111111);
+        // Every input, against moving one bit at a time; bits past the
+        // tenth are dropped.
+        for v in 0..1 << BITS {
+            let slow = (0..BITS).fold(0, |m, b| m | ((v >> b) & 1) << (3 * b));
+            assert_eq!(spread(v), slow, "{v}");
+            assert_eq!(spread(v | 0xffff_fc00), slow, "{v}");
+        }
+    }
+
+    /// The copy's mesh lists the scene's polygons in the spatial order,
+    /// each with its corners' positions and normals in the same order; the
+    /// face normals and centroids it takes over are bit for bit those
+    /// computed from its own mesh.
+    #[test]
+    fn the_copy_is_the_mesh_reordered_with_its_face_numbers() {
+        let mesh = crate::models::builtin_model("torus", Some(256)).unwrap();
+        assert!(mesh.polygon_count() >= SPATIAL_POLYGONS);
+        let normals = vertex_normals(&mesh, NormalWeighting::Uniform, None);
+        let camera = Camera::framing_sphere(Vec3::ZERO, 2.0, 40.0, 1.5);
+        let scene = crate::frame::tests::lit_scene(mesh, normals, camera);
+        let mesh = &scene.mesh;
+        let (mut faces, mut centroids) = (Vec::new(), Vec::new());
+        face_geometry(mesh, &mut faces, &mut centroids);
+        let (copy, copy_faces, copy_centroids) = spatial_copy(&scene, &faces, &centroids).unwrap();
+        let mut order = Vec::new();
+        spatial_order(&centroids, &mut order);
+        assert_eq!(copy.mesh.polygon_count(), mesh.polygon_count());
+        assert_eq!(copy.mesh.positions().len(), mesh.positions().len());
+        for (new, &old) in order.iter().enumerate() {
+            let at = |m: &Mesh, f: usize| -> Vec<Vec3> {
+                m.polygon(f)
+                    .iter()
+                    .map(|&v| m.positions()[v as usize])
+                    .collect()
+            };
+            assert_eq!(at(&copy.mesh, new), at(mesh, old as usize));
+            let normals = |s: &Scene, f: usize| -> Vec<Vec3> {
+                s.normals.corner()[s.mesh.corner_range(f)]
+                    .iter()
+                    .map(|&n| s.normals.normals[n as usize])
+                    .collect()
+            };
+            assert_eq!(normals(&copy, new), normals(&scene, old as usize));
+        }
+        let (mut own_faces, mut own_centroids) = (Vec::new(), Vec::new());
+        face_geometry(&copy.mesh, &mut own_faces, &mut own_centroids);
+        let bits = |v: &Vec3| v.to_array().map(f32::to_bits);
+        let face_bits =
+            |f: &[Option<Vec3>]| -> Vec<_> { f.iter().map(|n| n.as_ref().map(bits)).collect() };
+        assert_eq!(face_bits(&copy_faces), face_bits(&own_faces));
+        let centroid_bits = |c: &[Vec3]| -> Vec<_> { c.iter().map(bits).collect() };
+        assert_eq!(
+            centroid_bits(&copy_centroids),
+            centroid_bits(&own_centroids)
+        );
     }
 }

@@ -387,3 +387,45 @@ fn releasing_lines_changes_no_memory() {
     }
     assert!(values.iter().copied().eq((0..4099).map(|v| v + 3)));
 }
+
+struct StoreRgb(usize);
+
+impl Kernel for StoreRgb {
+    type Output = [u8; 40];
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> [u8; 40] {
+        // Pixel i: r = 10 i + 1, g = r + 1, b = r + 2, and 0xaa in the top byte.
+        let pixels: [i32; 8] = std::array::from_fn(|i| {
+            let r = 10 * i as i32 + 1;
+            (0xaa << 24) | r | (r + 1) << 8 | (r + 2) << 16
+        });
+        let mut out = [0xee; 40];
+        let at = self.0;
+        s.i_store_rgb(
+            s.i_load(&pixels),
+            (&mut out[at..at + 24]).try_into().unwrap(),
+        );
+        out
+    }
+}
+
+/// Each backend's `i_store_rgb` writes a block's 24 bytes of RGB, at any
+/// offset, and not a byte around them (the AVX-512 build's store is
+/// masked, the AVX2 one's three overlap).
+#[test]
+fn rgb_stores_write_their_24_bytes_and_no_more() {
+    for level in SimdLevel::supported() {
+        for at in 0..=16 {
+            let out = dispatch(level, StoreRgb(at));
+            let rgb: Vec<u8> = (0..8u8)
+                .flat_map(|i| [10 * i + 1, 10 * i + 2, 10 * i + 3])
+                .collect();
+            assert_eq!(out[at..at + 24], rgb[..], "{level:?} at {at}");
+            assert!(out[..at].iter().all(|&b| b == 0xee), "{level:?} at {at}");
+            assert!(
+                out[at + 24..].iter().all(|&b| b == 0xee),
+                "{level:?} at {at}"
+            );
+        }
+    }
+}
