@@ -23,6 +23,18 @@ use crate::simd::{Lanes, Simd, Vf, Vi};
 /// The most attributes a method interpolates (Phong: normal and position).
 pub(crate) const MAX_ATTRS: usize = 6;
 
+/// What is known of the attributes [`Shader::shade_lanes`] gets: chosen
+/// per row of a span (`fill_span` in `raster/tiled/band/pairs.rs`), so
+/// that the conversion to bytes does only what the row needs.
+pub(crate) mod known {
+    /// Nothing: any value, NaN and infinities included.
+    pub(crate) const ANYTHING: u8 = 0;
+    /// Every lane below 2^31 or NaN ([`crate::simd::Lanes::store_bytes_below`]).
+    pub(crate) const BELOW_2_31: u8 = 1;
+    /// Every lane in `[0, 256)` ([`crate::simd::Lanes::store_bytes_within`]).
+    pub(crate) const BYTES: u8 = 2;
+}
+
 /// Per-method colouring of a block of fragments.
 pub(crate) trait Shader: Sync {
     /// How many attributes the method interpolates.
@@ -62,11 +74,11 @@ pub(crate) trait Shader: Sync {
     /// As [`Shader::shade`] on `L::LANES` fragments at once (a span's
     /// blocks two at a time, see `raster/tiled/band/pairs.rs`), with the
     /// same operations lane by lane, the colours stored into `colors`
-    /// (`L::LANES` long). Only called when not `DEFERRED`. `BELOW`: every
-    /// lane of the attributes is known to be below 2^31 or NaN (see
-    /// `fill_span`), so the conversion to bytes may drop its guard
-    /// ([`Lanes::store_bytes_below`]).
-    fn shade_lanes<L: Lanes, const BELOW: bool>(
+    /// (`L::LANES` long). Only called when not `DEFERRED`. `KNOWN`: what is
+    /// known of the attributes, one of [`known`]'s, so the conversion to
+    /// bytes may drop its guard ([`Lanes::store_bytes_below`]) or its
+    /// shuffles ([`Lanes::store_bytes_within`]).
+    fn shade_lanes<L: Lanes, const KNOWN: u8>(
         &self,
         color: u32,
         attrs: &[L; MAX_ATTRS],
@@ -100,7 +112,7 @@ impl Shader for FlatShader {
         Vi::splat(s, color as i32)
     }
     #[inline(always)]
-    fn shade_lanes<L: Lanes, const BELOW: bool>(
+    fn shade_lanes<L: Lanes, const KNOWN: u8>(
         &self,
         color: u32,
         _: &[L; MAX_ATTRS],
@@ -125,16 +137,16 @@ impl Shader for GouraudShader {
         Vf::to_bytes(a[0], a[1], a[2])
     }
     #[inline(always)]
-    fn shade_lanes<L: Lanes, const BELOW: bool>(
+    fn shade_lanes<L: Lanes, const KNOWN: u8>(
         &self,
         _: u32,
         a: &[L; MAX_ATTRS],
         colors: &mut [i32],
     ) {
-        if BELOW {
-            L::store_bytes_below(a[0], a[1], a[2], colors);
-        } else {
-            L::store_bytes(a[0], a[1], a[2], colors);
+        match KNOWN {
+            known::BYTES => L::store_bytes_within(a[0], a[1], a[2], colors),
+            known::BELOW_2_31 => L::store_bytes_below(a[0], a[1], a[2], colors),
+            _ => L::store_bytes(a[0], a[1], a[2], colors),
         }
     }
 }

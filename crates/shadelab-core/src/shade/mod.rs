@@ -22,7 +22,7 @@ mod model;
 mod scalar;
 
 pub(crate) use self::blocks::{
-    AllMethods, FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS,
+    known, AllMethods, FlatShader, GouraudShader, PhongShader, Shader, MAX_ATTRS,
 };
 pub(crate) use self::lanes::byte_units;
 pub use self::model::{LightTerm, Lighting, LightingTerms, Terms};

@@ -121,6 +121,12 @@ impl Lanes for Wide {
         Wide(unsafe { _mm512_fmadd_ps(self.0, m.0, a.0) }, self.1)
     }
     #[inline(always)]
+    fn halves(self, v: [f32; 2]) -> Wide {
+        // SAFETY: see `Wide`.
+        let v = unsafe { _mm512_mask_blend_ps(0xff00, _mm512_set1_ps(v[0]), _mm512_set1_ps(v[1])) };
+        Wide(v, self.1)
+    }
+    #[inline(always)]
     fn min(self, o: Wide) -> Wide {
         // As `vminps` of 256 bits: the second operand when either is NaN.
         // SAFETY: see `Wide`.
@@ -208,15 +214,43 @@ impl Lanes for Wide {
             // NaN or at most -2^31, which give i32::MIN) saturate to
             // 0..=255 in the packs into r0..r3 g0..g3 b0..b3 b0..b3 of
             // four pixels, then are gathered per pixel.
-            let [r, g, b] = [
-                _mm512_cvttps_epi32(r.0),
-                _mm512_cvttps_epi32(g.0),
-                _mm512_cvttps_epi32(b.0),
-            ];
+            let [r, g, b] = truncated([r, g, b]);
             let planar = _mm512_packus_epi16(_mm512_packs_epi32(r, g), _mm512_packs_epi32(b, b));
             let quarter = _mm_setr_epi8(0, 4, 8, -1, 1, 5, 9, -1, 2, 6, 10, -1, 3, 7, 11, -1);
             let packed = _mm512_shuffle_epi8(planar, _mm512_broadcast_i32x4(quarter));
             _mm512_storeu_si512(dst.as_mut_ptr().cast(), packed);
         }
+    }
+    /// Two shifts and one three-way or in place of the packs' four
+    /// shuffles, which all wait for one port: with w once per row for the
+    /// blocks of 8 too, 3–6 % off the full-screen Gouraud quad
+    /// (BENCHMARKS.md, "Bytes shifted into place").
+    #[inline(always)]
+    fn store_bytes_within(r: Wide, g: Wide, b: Wide, dst: &mut [i32]) {
+        let dst: &mut [i32; 16] = dst.try_into().unwrap();
+        // SAFETY: see `Wide`; `dst` is 16 lanes.
+        unsafe {
+            // Each channel truncates to 0..=255: r | g << 8 | b << 16
+            // (`0xfe`: the or of the three operands).
+            let [r, g, b] = truncated([r, g, b]);
+            let (g, b) = (_mm512_slli_epi32::<8>(g), _mm512_slli_epi32::<16>(b));
+            let rgb = _mm512_ternarylogic_epi32::<0xfe>(r, g, b);
+            _mm512_storeu_si512(dst.as_mut_ptr().cast(), rgb);
+        }
+    }
+}
+
+/// Each lane of each channel truncated to `i32` (`i32::MIN` for NaN and
+/// what does not fit).
+#[inline(always)]
+fn truncated([r, g, b]: [Wide; 3]) -> [__m512i; 3] {
+    // SAFETY: see `Wide`. No closure: it would not take the caller's
+    // target features.
+    unsafe {
+        [
+            _mm512_cvttps_epi32(r.0),
+            _mm512_cvttps_epi32(g.0),
+            _mm512_cvttps_epi32(b.0),
+        ]
     }
 }

@@ -168,6 +168,61 @@ fn store_bytes_truncates_and_saturates_in_16_lanes() {
     check_bytes16(below, true);
 }
 
+/// [`Lanes::store_bytes_within`] of 16 lanes, and [`Lanes::halves`].
+struct BytesWithin([[f32; 16]; 3]);
+
+impl Kernel for BytesWithin {
+    type Output = ([i32; 16], [f32; 16]);
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> ([i32; 16], [f32; 16]) {
+        use crate::simd::Lanes;
+        let [r, g, b] = self.0.map(|v| s.f16_load(&v));
+        let mut out = [0; 16];
+        <S::F16 as Lanes>::store_bytes_within(r, g, b, &mut out);
+        let mut halves = [0.0; 16];
+        r.halves([1.5, -2.0]).store_to(&mut halves);
+        (out, halves)
+    }
+}
+
+#[test]
+fn store_bytes_within_gives_the_bytes_of_channels_in_0_256() {
+    let edges = [
+        0.0,
+        -0.0,
+        f32::from_bits(1),
+        1e-40,
+        0.49,
+        0.5,
+        0.999_999_94,
+        1.0,
+        17.75,
+        127.996,
+        128.0,
+        254.99,
+        255.0,
+        255.5,
+        255.999_98,
+        200.5,
+    ];
+    // Each edge in every lane of each channel, then a sweep of [0, 256)
+    // in steps of 1/64 (each byte with fractions near both its ends).
+    let mut cases: Vec<[f32; 16]> = (0..16)
+        .map(|k| std::array::from_fn(|i| edges[(i + k) % 16]))
+        .collect();
+    cases.extend((0..1024).map(|k| std::array::from_fn(|i| (k * 16 + i) as f32 / 64.0)));
+    let halves: [f32; 16] = std::array::from_fn(|i| if i < 8 { 1.5 } else { -2.0 });
+    for level in SimdLevel::supported() {
+        for (k, &r) in cases.iter().enumerate() {
+            let (g, b) = (cases[(k + 1) % cases.len()], cases[(k + 7) % cases.len()]);
+            let want: [i32; 16] =
+                std::array::from_fn(|i| byte(r[i]) | byte(g[i]) << 8 | byte(b[i]) << 16);
+            let got = dispatch(level, BytesWithin([r, g, b]));
+            assert_eq!(got, (want, halves), "{level:?}, case {k}");
+        }
+    }
+}
+
 #[test]
 fn lane_operations() {
     for level in SimdLevel::supported() {

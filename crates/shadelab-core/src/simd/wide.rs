@@ -24,6 +24,8 @@ pub(crate) trait Lanes:
     const LANES: usize;
     /// `v` in every lane.
     fn splat_like(self, v: f32) -> Self;
+    /// `v[0]` in the first half of the lanes, `v[1]` in the second.
+    fn halves(self, v: [f32; 2]) -> Self;
     /// `self·m + a`, fused where the backend can.
     fn mul_add(self, m: Self, a: Self) -> Self;
     /// `self < o ? self : o` (so a NaN in `self` gives `o`).
@@ -54,6 +56,15 @@ pub(crate) trait Lanes:
     /// As [`Lanes::store_bytes`], for channels whose lanes are all below
     /// 2^31 or NaN (never +∞), see [`Simd::f_to_bytes_below`].
     fn store_bytes_below(r: Self, g: Self, b: Self, dst: &mut [i32]);
+    /// As [`Lanes::store_bytes`], for channels whose every lane lies in
+    /// `[0, 256)`: each truncates to its byte, with nothing to saturate, so
+    /// backends whose packs shuffle may shift the bytes into place instead
+    /// (the AVX-512 lanes). See `fill_span` in
+    /// `raster/tiled/band/pairs.rs` for who may call it.
+    #[inline(always)]
+    fn store_bytes_within(r: Self, g: Self, b: Self, dst: &mut [i32]) {
+        Self::store_bytes_below(r, g, b, dst)
+    }
 }
 
 impl<S: Simd> Lanes for Vf<S> {
@@ -62,6 +73,10 @@ impl<S: Simd> Lanes for Vf<S> {
     #[inline(always)]
     fn splat_like(self, v: f32) -> Self {
         Vf::splat(self.1, v)
+    }
+    #[inline(always)]
+    fn halves(self, v: [f32; 2]) -> Self {
+        Vf::load(self.1, &std::array::from_fn(|i| v[i / 4]))
     }
     #[inline(always)]
     fn mul_add(self, m: Self, a: Self) -> Self {
@@ -169,6 +184,10 @@ impl<V: Lanes> Lanes for Pair<V> {
         Pair(self.0.splat_like(v), self.1.splat_like(v))
     }
     #[inline(always)]
+    fn halves(self, v: [f32; 2]) -> Self {
+        Pair(self.0.splat_like(v[0]), self.1.splat_like(v[1]))
+    }
+    #[inline(always)]
     fn mul_add(self, m: Self, a: Self) -> Self {
         Pair(self.0.mul_add(m.0, a.0), self.1.mul_add(m.1, a.1))
     }
@@ -228,5 +247,11 @@ impl<V: Lanes> Lanes for Pair<V> {
         let (low, high) = dst.split_at_mut(V::LANES);
         V::store_bytes_below(r.0, g.0, b.0, low);
         V::store_bytes_below(r.1, g.1, b.1, high);
+    }
+    #[inline(always)]
+    fn store_bytes_within(r: Self, g: Self, b: Self, dst: &mut [i32]) {
+        let (low, high) = dst.split_at_mut(V::LANES);
+        V::store_bytes_within(r.0, g.0, b.0, low);
+        V::store_bytes_within(r.1, g.1, b.1, high);
     }
 }

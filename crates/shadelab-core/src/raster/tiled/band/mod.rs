@@ -813,6 +813,74 @@ mod tests {
         }
     }
 
+    /// [`walk::all_in_bytes`] of attributes `x·dx + at_row` times w (as
+    /// the pairs of blocks compute them) at a span's two ends says yes
+    /// exactly where every column between them is in `[0, 256)` (checked
+    /// column by column), and says yes to ordinary colours.
+    struct EndsInBytes;
+
+    impl Kernel for EndsInBytes {
+        type Output = ();
+        fn run<S: Simd>(self, s: S) {
+            use crate::simd::Lanes;
+            let ramp = s.f16_load(&std::array::from_fn(|i| i as f32));
+            let splat = |v: f32| ramp.splat_like(v);
+            let (first, last) = (3.0f32, 1002.0f32);
+            let colours = ([0.1, -0.2, 0.05], [10.0, 250.0, 128.0]);
+            let with = |k: usize, dx: f32, row: f32| {
+                let (mut d, mut r) = colours;
+                (d[k], r[k]) = (dx, row);
+                (d, r)
+            };
+            // The planes (dx, value at the row), w, and the verdict.
+            type Case = (([f32; 3], [f32; 3]), f32, bool);
+            let cases: [Case; 12] = [
+                (colours, 1.0, true),
+                (with(0, -0.02, 10.0), 1.0, false),
+                (with(1, 0.01, 250.0), 1.0, false),
+                (with(2, 0.0, 255.5), 1.0, true),
+                (with(2, 0.0, 256.0), 1.0, false),
+                (with(0, 0.0, -0.0), 1.0, true),
+                (with(0, -1e-9, 0.0), 1.0, false),
+                (with(1, f32::NAN, 0.0), 1.0, false),
+                (with(2, 0.0, f32::INFINITY), 1.0, false),
+                (([1e-3, 0.0, 2e-4], [0.1, 2.5, 0.0]), 100.0, true),
+                (([-1e-6, 0.0, 0.0], [2.5e-3, 2.5, 0.0]), 100.0, true),
+                (([0.0; 3], [1e-45; 3]), 1e-3, true),
+            ];
+            for (k, ((dx, row), w, want)) in cases.into_iter().enumerate() {
+                let attributes = |x| {
+                    let mut a = [splat(0.0); MAX_ATTRS];
+                    for j in 0..3 {
+                        a[j] = Lanes::mul_add(x, splat(dx[j]), splat(row[j])) * splat(w);
+                    }
+                    a
+                };
+                let got = walk::all_in_bytes(3, &attributes(splat(0.0).halves([first, last])));
+                assert_eq!(got, want, "case {k}");
+                let mut every = true;
+                for x in (first as usize..=last as usize).step_by(16) {
+                    let columns = std::array::from_fn(|i| ((x + i) as f32).min(last));
+                    let values = attributes(s.f16_load(&columns));
+                    for v in &values[..3] {
+                        let mut lanes = [0f32; 16];
+                        v.store_to(&mut lanes);
+                        every &= lanes.iter().all(|&v| (0.0..256.0).contains(&v));
+                    }
+                }
+                assert_eq!(got, every, "case {k}: the ends against every column");
+            }
+            assert!(!walk::all_in_bytes(0, &[splat(1.0); MAX_ATTRS]));
+        }
+    }
+
+    #[test]
+    fn in_bytes_between_the_ends_exactly_where_every_column_is() {
+        for level in SimdLevel::supported() {
+            dispatch(level, EndsInBytes);
+        }
+    }
+
     /// Every pixel and the count come out right whatever the output's
     /// alignment (each offset of 1 pixel moves it by 3 bytes, so 32
     /// offsets give every address modulo 32), with and without streaming

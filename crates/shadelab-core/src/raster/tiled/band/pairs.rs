@@ -22,19 +22,25 @@
 //! Pairs start at a multiple of 16 columns, a cache line of the buffers
 //! (`depth_buffer.rs`), after a lone first block where needed.
 //!
-//! A row's whole pairs run in one of three instances of one loop, chosen
+//! A row's whole pairs run in one of four instances of one loop, chosen
 //! once per row so that no pair tests anything but its depths: w per pixel;
-//! w for the whole row (or 1, not needed); and the same without Gouraud's
+//! w for the whole row (or 1, not needed); the same without Gouraud's
 //! guard before its conversion to bytes, where [`planes_below`] shows that
 //! no lane of the row can reach 2^31 (the guard's only effect is on such
-//! values, so the bytes are the same).
+//! values, so the bytes are the same); and, where the row's colours are
+//! all in `[0, 256)` (nearly every row of a large triangle, shown the same
+//! way), without the saturation either, which lets the AVX-512 lanes
+//! shift each byte into place where the packs shuffled
+//! ([`crate::simd::Lanes::store_bytes_within`]).
 //!
 //! Phong's spans use the same pairs (`phong_span.rs`).
 
-use super::walk::{interpolate_planes, needs_w, planes_below, row_w, shade_block, Fill, Row};
+use super::walk::{
+    all_in_bytes, interpolate_planes, needs_w, planes_below, row_w, shade_block, Fill, Row,
+};
 use crate::raster::tiled::setup::plane_count;
-use crate::shade::{Shader, MAX_ATTRS};
-use crate::simd::{Lanes, Simd, Vi};
+use crate::shade::{known, Shader, MAX_ATTRS};
+use crate::simd::{Lanes, Simd, Vf, Vi};
 
 /// What a row's pairs of blocks need, in 16 lanes, and the columns of the
 /// current pair.
@@ -46,6 +52,8 @@ pub(super) struct Pairs<S: Simd> {
     from: S::F16,
     to: S::F16,
     pub(super) sixteen: S::F16,
+    /// The triangle's first column.
+    x0: i32,
     dx: [S::F16; 2 + MAX_ATTRS],
     at_row: [S::F16; 2 + MAX_ATTRS],
 }
@@ -73,6 +81,7 @@ impl<S: Simd> Pairs<S> {
             from: ramp.splat_like((left - 1 - x0) as f32),
             to: ramp.splat_like((right - x0) as f32),
             sixteen: ramp.splat_like(16.0),
+            x0,
             dx,
             at_row,
         }
@@ -131,19 +140,7 @@ impl<S: Simd> Pairs<S> {
     /// ([`row_w`]), else `None`.
     #[inline(always)]
     pub(super) fn row_w<Sh: Shader>(&self, f: &Fill<'_, S, Sh>, row: &Row) -> Option<S::F16> {
-        // Flat has no 1/w plane. No closure: see `Surface::radiance`.
-        if plane_count(Sh::ATTRS) > 1 {
-            let planes = (Sh::ATTRS, Sh::SCALE_FREE);
-            row_w(
-                f.interpolation,
-                planes,
-                f.planes[1].dx,
-                row.values[1],
-                self.sixteen,
-            )
-        } else {
-            None
-        }
+        fill_row_w(f, row, self.sixteen)
     }
 
     /// The current pair's attributes (normals not yet turned for back
@@ -176,7 +173,7 @@ impl<S: Simd> Pairs<S> {
         )
     }
 
-    /// As [`Pairs::attributes`] given w for the row (1 where w is not
+    /// As [`Pairs::attributes_at`] given w for the row (1 where w is not
     /// needed: `a·1 = a` exactly), which multiplies without a test per
     /// pair: the same bits.
     ///
@@ -185,15 +182,32 @@ impl<S: Simd> Pairs<S> {
     /// meshes' 1080p Gouraud frames 9–11 % slower (BENCHMARKS.md, "The
     /// pairs' attributes from walk.rs's own helper").
     #[inline(always)]
-    fn attributes_times<Sh: Shader>(&self, w: S::F16) -> [S::F16; MAX_ATTRS] {
+    fn attributes_times<Sh: Shader>(&self, column: S::F16, w: S::F16) -> [S::F16; MAX_ATTRS] {
         let mut attrs = [w.splat_like(0.0); MAX_ATTRS];
         for k in 0..Sh::ATTRS {
-            attrs[k] = self.column.mul_add(self.dx[2 + k], self.at_row[2 + k]);
+            attrs[k] = column.mul_add(self.dx[2 + k], self.at_row[2 + k]);
         }
         for a in &mut attrs[Sh::SCALE_FREE..Sh::ATTRS] {
             *a = *a * w;
         }
         attrs
+    }
+
+    /// Whether every lane the row's whole pairs hand to
+    /// [`Shader::shade_lanes`] with [`Pairs::attributes_times`] and the
+    /// row's w lies in `[0, 256)`, given the span `left..right`, in which
+    /// all of a whole pair's lanes lie: [`known::BYTES`].
+    ///
+    /// Each attribute is `x·dx + at_row`, then times w, in correctly
+    /// rounded steps of the one variable x, so monotonic in x (as in
+    /// [`planes_below`]): its values between the span's ends lie between
+    /// its values there, computed here with the same operations, both ends
+    /// in one vector (the first in lanes 0..8, the last in the rest).
+    #[inline(always)]
+    fn in_bytes<Sh: Shader>(&self, w: S::F16, (left, right): (i32, i32)) -> bool {
+        let ends = [left - self.x0, right - 1 - self.x0].map(|x| x as f32);
+        let both = self.sixteen.halves(ends);
+        all_in_bytes(Sh::ATTRS, &self.attributes_times::<Sh>(both, w))
     }
 
     /// Whether every lane the row's whole pairs hand to
@@ -266,16 +280,19 @@ pub(super) fn fill_span<S: Simd, Sh: Shader>(
     depth: &mut [f32],
     color: &mut [i32],
 ) -> u32 {
+    // w for the row's blocks of 8 too, where it is the row's: the same
+    // bits as per pixel, without a reciprocal per block.
+    let row = &(row, fill_row_w(f, row, Vf::splat(s, 1.0)));
     let head = 8 * blocks_and_head(x, right).1;
     let (depth_head, depth) = depth.split_at_mut(head);
     let (color_head, color) = color.split_at_mut(head);
     let mut fragments = blocks(s, f, row, (x, left, right), depth_head, color_head);
     let x = x + head as i32;
-    let mut pairs = Pairs::new(s, f, row, (x, left, right));
+    let mut pairs = Pairs::new(s, f, row.0, (x, left, right));
     // w for the whole row, 1 where no attribute needs it, or `None`: per
     // pixel. The loop below is compiled for each case, with no test per
     // pair.
-    let w = match pairs.row_w(f, row) {
+    let w = match pairs.row_w(f, row.0) {
         Some(w) => Some(w),
         None if needs_w(f.interpolation, (Sh::ATTRS, Sh::SCALE_FREE)) => None,
         None => Some(pairs.sixteen.splat_like(1.0)),
@@ -286,19 +303,27 @@ pub(super) fn fill_span<S: Simd, Sh: Shader>(
     let buffers = (depth_pairs, color_pairs);
     let span = (x, left, right);
     // Gouraud's conversion to bytes guards against values of 2^31 and
-    // more (a sliver's planes can reach them), 3 of a pair's ~25
-    // instructions. A row whose attributes stay below that everywhere
+    // more (a sliver's planes can reach them), and gathers each pixel's
+    // bytes with shuffles. A row whose attributes are bytes everywhere
     // (nearly all rows of a large triangle with w the same along them)
-    // takes the loop without the guard: the same bytes. Worth a check
-    // from a few pairs on.
+    // takes a loop with neither where the lanes allow (`in_bytes`); else
+    // one whose attributes stay below 2^31, without the guard: the same
+    // bytes. Worth a check from a few pairs on.
+    use known::{ANYTHING, BELOW_2_31, BYTES};
     fragments += match w {
-        Some(w) if count >= 4 && pairs.below(f, Some(w), (left, right)) => {
-            whole_pairs::<S, Sh, true, true>(s, f, row, &mut pairs, w, span, buffers)
+        Some(w) if count >= 4 => {
+            if pairs.in_bytes::<Sh>(w, (left, right)) {
+                whole_pairs::<S, Sh, BYTES, true>(s, f, row, &mut pairs, w, span, buffers)
+            } else if pairs.below(f, Some(w), (left, right)) {
+                whole_pairs::<S, Sh, BELOW_2_31, true>(s, f, row, &mut pairs, w, span, buffers)
+            } else {
+                whole_pairs::<S, Sh, ANYTHING, true>(s, f, row, &mut pairs, w, span, buffers)
+            }
         }
-        Some(w) => whole_pairs::<S, Sh, false, true>(s, f, row, &mut pairs, w, span, buffers),
+        Some(w) => whole_pairs::<S, Sh, ANYTHING, true>(s, f, row, &mut pairs, w, span, buffers),
         None => {
             let unused = pairs.sixteen;
-            whole_pairs::<S, Sh, false, false>(s, f, row, &mut pairs, unused, span, buffers)
+            whole_pairs::<S, Sh, ANYTHING, false>(s, f, row, &mut pairs, unused, span, buffers)
         }
     };
     let x = x + 16 * count as i32;
@@ -307,12 +332,12 @@ pub(super) fn fill_span<S: Simd, Sh: Shader>(
 
 /// The pairs of blocks of [`fill_span`] from column `x`, in `buffers`'
 /// depths and colours: with w for the whole row ([`Pairs::attributes_times`])
-/// if `ROW_W`, else per pixel; with [`Shader::shade_lanes`]'s `BELOW`.
+/// if `ROW_W`, else per pixel; with [`Shader::shade_lanes`]'s `KNOWN`.
 #[inline(always)]
-fn whole_pairs<S: Simd, Sh: Shader, const BELOW: bool, const ROW_W: bool>(
+fn whole_pairs<S: Simd, Sh: Shader, const KNOWN: u8, const ROW_W: bool>(
     s: S,
     f: &Fill<'_, S, Sh>,
-    row: &Row,
+    row: &BlockRow<S>,
     pairs: &mut Pairs<S>,
     w: S::F16,
     (x, left, right): Span,
@@ -324,11 +349,11 @@ fn whole_pairs<S: Simd, Sh: Shader, const BELOW: bool, const ROW_W: bool>(
         if pass == 0xffff {
             z.store_to(depth);
             let attrs = if ROW_W {
-                pairs.attributes_times::<Sh>(w)
+                pairs.attributes_times::<Sh>(pairs.column, w)
             } else {
                 pairs.attributes(f, None)
             };
-            f.shader.shade_lanes::<_, BELOW>(f.color, &attrs, color);
+            f.shader.shade_lanes::<_, KNOWN>(f.color, &attrs, color);
             fragments += 16;
         } else if pass != 0 || f.watch_ties {
             // Not whole: block by block, which tests again (and sees the
@@ -341,13 +366,29 @@ fn whole_pairs<S: Simd, Sh: Shader, const BELOW: bool, const ROW_W: bool>(
     fragments
 }
 
+/// A row, and w for its blocks of 8 where it is the row's.
+type BlockRow<'a, S> = (&'a Row, Option<Vf<S>>);
+
+/// w for row `row` of `f`'s triangle where it is the same along the row
+/// ([`row_w`]), in the lanes of `like`; else `None`.
+#[inline(always)]
+fn fill_row_w<S: Simd, Sh: Shader, L: Lanes>(f: &Fill<'_, S, Sh>, row: &Row, like: L) -> Option<L> {
+    // Flat has no 1/w plane. No closure: see `Surface::radiance`.
+    if plane_count(Sh::ATTRS) > 1 {
+        let planes = (Sh::ATTRS, Sh::SCALE_FREE);
+        row_w(f.interpolation, planes, f.planes[1].dx, row.values[1], like)
+    } else {
+        None
+    }
+}
+
 /// As [`fill_span`], block by block with `shade_block`: a pair that is not
 /// whole, or a lone block.
 #[inline(always)]
 fn blocks<S: Simd, Sh: Shader>(
     s: S,
     f: &Fill<'_, S, Sh>,
-    row: &Row,
+    &(row, w): &BlockRow<S>,
     (x, left, right): Span,
     depth: &mut [f32],
     color: &mut [i32],
@@ -358,7 +399,8 @@ fn blocks<S: Simd, Sh: Shader>(
     for (k, (depth, color)) in depth.iter_mut().zip(color).enumerate() {
         let x = x + 8 * k as i32;
         let inside = inside(s, (x, left, right));
-        fragments += shade_block::<S, Sh, true>(s, f, inside, f.column(x), row, depth, color);
+        let x = f.column(x);
+        fragments += shade_block::<S, Sh, true>(s, f, inside, x, (row, w), depth, color);
     }
     fragments
 }

@@ -258,7 +258,7 @@ impl Band {
                 f,
                 inside,
                 x,
-                row,
+                (row, None),
                 depth.unwrap(),
                 color.unwrap(),
             );
@@ -515,14 +515,14 @@ pub(super) fn depth_test<S: Simd, Sh: Shader>(
 /// A block of a shader that is not deferred (flat, Gouraud): depth test,
 /// colours of the lanes that passed written; returns how many passed.
 /// `SPAN`: a block of a large triangle's span, where nearly every block is
-/// whole.
+/// whole. `row_w`: w for the whole row if the caller has it ([`row_w`]).
 #[inline(always)]
 pub(super) fn shade_block<S: Simd, Sh: Shader, const SPAN: bool>(
     s: S,
     f: &Fill<'_, S, Sh>,
     inside: Vi<S>,
     x: Vf<S>,
-    row: &Row,
+    (row, row_w): (&Row, Option<Vf<S>>),
     depth_slot: &mut [f32; 8],
     color_slot: &mut [i32; 8],
 ) -> u32 {
@@ -531,7 +531,9 @@ pub(super) fn shade_block<S: Simd, Sh: Shader, const SPAN: bool>(
     if bits == 0 {
         return 0;
     }
-    let attrs = interpolate(f, x, |j| Vf::splat(s, row.values[j]));
+    let planes = (Sh::ATTRS, Sh::SCALE_FREE);
+    let at_row = |j| Vf::splat(s, row.values[j]);
+    let attrs = interpolate_planes(f.interpolation, planes, x, |k| f.dx[k], at_row, row_w);
     let colors = f.shader.shade(f.shader_lanes, s, f.color, f.t.flip, &attrs);
     // A whole block of a span is stored without reading the old colours
     // (a load that waits for the line, where a store would not). Blocks
@@ -652,6 +654,24 @@ pub(super) fn planes_below<L: Lanes>(
         below = below & limit.gt(first[k]) & limit.gt(last[k]);
     }
     L::mask_bits(below) == u32::MAX >> (32 - L::LANES)
+}
+
+/// Whether every lane of attributes `0..count` of `values` lies in
+/// `[0, 256)`; `false` for no attributes. Given the attributes at a span's
+/// two ends, where they are monotonic in x between them (see
+/// [`planes_below`]), so are all between: [`known::BYTES`].
+///
+/// [`known::BYTES`]: crate::shade::known::BYTES
+#[inline(always)]
+pub(super) fn all_in_bytes<L: Lanes>(count: usize, values: &[L; MAX_ATTRS]) -> bool {
+    let all = u32::MAX >> (32 - L::LANES);
+    let mut inside = if count == 0 { 0 } else { all };
+    let (zero, top) = (values[0].splat_like(0.0), values[0].splat_like(256.0));
+    for &v in &values[..count] {
+        // `gt` is false for NaN: a NaN is not below the top.
+        inside &= L::mask_bits(top.gt(v)) & !L::mask_bits(zero.gt(v));
+    }
+    inside == all
 }
 
 /// Whether [`interpolate_planes`] multiplies attributes by w: in
