@@ -225,6 +225,7 @@ impl Lanes for Wide {
     /// shuffles, which all wait for one port: with w once per row for the
     /// blocks of 8 too, 3–6 % off the full-screen Gouraud quad
     /// (BENCHMARKS.md, "Bytes shifted into place").
+    const SHIFTS_BYTES: bool = true;
     #[inline(always)]
     fn store_bytes_within(r: Wide, g: Wide, b: Wide, dst: &mut [i32]) {
         let dst: &mut [i32; 16] = dst.try_into().unwrap();

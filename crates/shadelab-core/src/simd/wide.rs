@@ -56,6 +56,13 @@ pub(crate) trait Lanes:
     /// As [`Lanes::store_bytes`], for channels whose lanes are all below
     /// 2^31 or NaN (never +∞), see [`Simd::f_to_bytes_below`].
     fn store_bytes_below(r: Self, g: Self, b: Self, dst: &mut [i32]);
+    /// Whether [`Lanes::store_bytes_within`] is cheaper than
+    /// [`Lanes::store_bytes_below`] here (it shifts where the packs
+    /// shuffle): only then does `fill_span` look for rows of bytes, and
+    /// give the span's blocks of 8 the row's w (see
+    /// `raster/tiled/band/pairs.rs`). Forced onto the AVX2 lanes, those
+    /// made the 1080p Gouraud quad 10 % slower there.
+    const SHIFTS_BYTES: bool = false;
     /// As [`Lanes::store_bytes`], for channels whose every lane lies in
     /// `[0, 256)`: each truncates to its byte, with nothing to saturate, so
     /// backends whose packs shuffle may shift the bytes into place instead
@@ -248,6 +255,7 @@ impl<V: Lanes> Lanes for Pair<V> {
         V::store_bytes_below(r.0, g.0, b.0, low);
         V::store_bytes_below(r.1, g.1, b.1, high);
     }
+    const SHIFTS_BYTES: bool = V::SHIFTS_BYTES;
     #[inline(always)]
     fn store_bytes_within(r: Self, g: Self, b: Self, dst: &mut [i32]) {
         let (low, high) = dst.split_at_mut(V::LANES);

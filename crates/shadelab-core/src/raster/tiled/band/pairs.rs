@@ -281,8 +281,17 @@ pub(super) fn fill_span<S: Simd, Sh: Shader>(
     color: &mut [i32],
 ) -> u32 {
     // w for the row's blocks of 8 too, where it is the row's: the same
-    // bits as per pixel, without a reciprocal per block.
-    let row = &(row, fill_row_w(f, row, Vf::splat(s, 1.0)));
+    // bits as per pixel, without a reciprocal per block. With the rows of
+    // bytes below, only where those pay (`Lanes::SHIFTS_BYTES`).
+    let shifts = <S::F16 as Lanes>::SHIFTS_BYTES;
+    let row = &(
+        row,
+        if shifts {
+            fill_row_w(f, row, Vf::splat(s, 1.0))
+        } else {
+            None
+        },
+    );
     let head = 8 * blocks_and_head(x, right).1;
     let (depth_head, depth) = depth.split_at_mut(head);
     let (color_head, color) = color.split_at_mut(head);
@@ -312,7 +321,7 @@ pub(super) fn fill_span<S: Simd, Sh: Shader>(
     use known::{ANYTHING, BELOW_2_31, BYTES};
     fragments += match w {
         Some(w) if count >= 4 => {
-            if pairs.in_bytes::<Sh>(w, (left, right)) {
+            if shifts && pairs.in_bytes::<Sh>(w, (left, right)) {
                 whole_pairs::<S, Sh, BYTES, true>(s, f, row, &mut pairs, w, span, buffers)
             } else if pairs.below(f, Some(w), (left, right)) {
                 whole_pairs::<S, Sh, BELOW_2_31, true>(s, f, row, &mut pairs, w, span, buffers)
