@@ -52,8 +52,6 @@ pub(super) struct Pairs<S: Simd> {
     from: S::F16,
     to: S::F16,
     pub(super) sixteen: S::F16,
-    /// The triangle's first column.
-    x0: i32,
     dx: [S::F16; 2 + MAX_ATTRS],
     at_row: [S::F16; 2 + MAX_ATTRS],
 }
@@ -81,7 +79,6 @@ impl<S: Simd> Pairs<S> {
             from: ramp.splat_like((left - 1 - x0) as f32),
             to: ramp.splat_like((right - x0) as f32),
             sixteen: ramp.splat_like(16.0),
-            x0,
             dx,
             at_row,
         }
@@ -204,8 +201,14 @@ impl<S: Simd> Pairs<S> {
     /// its values there, computed here with the same operations, both ends
     /// in one vector (the first in lanes 0..8, the last in the rest).
     #[inline(always)]
-    fn in_bytes<Sh: Shader>(&self, w: S::F16, (left, right): (i32, i32)) -> bool {
-        let ends = [left - self.x0, right - 1 - self.x0].map(|x| x as f32);
+    fn in_bytes<Sh: Shader>(
+        &self,
+        f: &Fill<'_, S, Sh>,
+        w: S::F16,
+        (left, right): (i32, i32),
+    ) -> bool {
+        let x0 = f.t.x0;
+        let ends = [left - x0, right - 1 - x0].map(|x| x as f32);
         let both = self.sixteen.halves(ends);
         all_in_bytes(Sh::ATTRS, &self.attributes_times::<Sh>(both, w))
     }
@@ -321,7 +324,7 @@ pub(super) fn fill_span<S: Simd, Sh: Shader>(
     use known::{ANYTHING, BELOW_2_31, BYTES};
     fragments += match w {
         Some(w) if count >= 4 => {
-            if shifts && pairs.in_bytes::<Sh>(w, (left, right)) {
+            if shifts && pairs.in_bytes(f, w, (left, right)) {
                 whole_pairs::<S, Sh, BYTES, true>(s, f, row, &mut pairs, w, span, buffers)
             } else if pairs.below(f, Some(w), (left, right)) {
                 whole_pairs::<S, Sh, BELOW_2_31, true>(s, f, row, &mut pairs, w, span, buffers)
