@@ -228,11 +228,12 @@ fn image_sizes_that_are_not_multiples_of_the_block() {
 }
 
 /// Triangles parallel to the image, seen straight on in perspective, so
-/// that their corners' w are equal (the tiled rasterizer takes w once per
-/// row where 1/w does not change along it, `walk::row_w`). Large ones
-/// (spans, pairs of blocks) and small ones (blocks of 8), nearer ones over
-/// farther ones, every method, both interpolation modes: the scanline
-/// rasterizer's pixels within 1/255.
+/// that their corners' w are equal. Large ones (spans, pairs of blocks) and
+/// small ones (blocks of 8), nearer ones over farther ones, every method,
+/// both interpolation modes: the scanline rasterizer's pixels within 1/255.
+/// And the tiled rasterizer draws such triangles in screen mode whatever
+/// the frame's (`Triangle::interpolated`): perspective mode's image is
+/// screen mode's, byte for byte.
 #[test]
 fn triangles_of_constant_w_match_the_scanline_rasterizer() {
     let cam = camera(DVec3::new(0.0, 0.0, 4.0), DVec3::ZERO, 50.0, 0.5, 20.0);
@@ -272,6 +273,32 @@ fn triangles_of_constant_w_match_the_scanline_rasterizer() {
             check_equivalent(&format!("constant-w-{w}x{h}"), &scene, &options)
                 .unwrap_or_else(|e| panic!("{shading:?}, {interpolation:?}: {e}"));
         }
+    }
+    for shading in [Shading::Gouraud, Shading::Phong] {
+        let [perspective, screen] = [Interpolation::Perspective, Interpolation::Screen].map(|i| {
+            let options = RenderOptions {
+                interpolation: i,
+                rasterizer: Rasterizer::Tiled,
+                gouraud_specular: true,
+                ..options(512, 512, shading)
+            };
+            let mut image = Image::filled(1, 1, options.background);
+            Renderer::new()
+                .render_into(&scene, &options, &mut image)
+                .unwrap();
+            image
+        });
+        assert!(
+            perspective == screen,
+            "{shading:?}: the modes' images differ"
+        );
+        // Not a blank or flat image: the colours vary over the quads.
+        let colours: std::collections::HashSet<_> = perspective.pixels().iter().collect();
+        assert!(
+            colours.len() > 1000,
+            "{shading:?}: {} colours",
+            colours.len()
+        );
     }
 }
 

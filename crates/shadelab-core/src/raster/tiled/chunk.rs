@@ -194,7 +194,7 @@ impl Frame<'_> {
                 .vertex([n.x, n.y, n.z, p.x, p.y, p.z, c[0], c[1], c[2]])
         };
         let v: [ScreenVertex<ALL_ATTRS>; 3] = [vertex(0), vertex(1), vertex(2)];
-        t.planes(s, &v, ALL_ATTRS, self.options.interpolation)
+        t.planes(s, &v, ALL_ATTRS)
     }
 
     /// Where the corners of the mesh triangle whose first corner is
@@ -326,12 +326,13 @@ impl<S: Simd, const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, S, A> {
         // here (a part of 16 empty rows of the dragon's frame: 4.1 ms with
         // them, 2.8 without, WebAssembly).
         let rows = frame.rows.clone();
-        let Some(mut t) = Triangle::edges_in_rows(x, y, options.width, options.height, rows) else {
+        let Some(t) = Triangle::edges_in_rows(x, y, options.width, options.height, rows) else {
             return;
         };
         if t.covers_no_centre() {
             return;
         }
+        let mut t = t.interpolated(options.interpolation, p.map(|p| p.inv_w));
         if A == 0 || A == ALL_ATTRS {
             self.flat_evaluations += u64::from(frame.counts_flat(Some(t.y0)));
             // As `flat_surface`, for a front face.
@@ -347,7 +348,7 @@ impl<S: Simd, const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, S, A> {
         }
         let vertex = |k: usize| p[k].vertex(frame.front_attrs::<A>(first_corner + k));
         let v: [ScreenVertex<A>; 3] = [vertex(0), vertex(1), vertex(2)];
-        let planes = t.planes(self.simd, &v, A, options.interpolation);
+        let planes = t.planes(self.simd, &v, A);
         self.bin(&t, &planes[..plane_count(A)], &CornerRefs::NONE);
     }
 
@@ -378,13 +379,14 @@ impl<S: Simd, const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, S, A> {
                 continue;
             }
             let (x, y) = (triangle.map(|v| v.x), triangle.map(|v| v.y));
-            let Some(mut t) = Triangle::edges(x, y, options.width, options.height) else {
+            let Some(t) = Triangle::edges(x, y, options.width, options.height) else {
                 continue;
             };
             if t.covers_no_centre() || !frame.draws(&t) {
                 continue;
             }
-            let planes = t.planes(self.simd, &triangle, attrs, options.interpolation);
+            let mut t = t.interpolated(options.interpolation, triangle.map(|v| v.inv_w));
+            let planes = t.planes(self.simd, &triangle, attrs);
             t.color = color;
             t.flip = if back { -1.0 } else { 1.0 };
             t.once = once;

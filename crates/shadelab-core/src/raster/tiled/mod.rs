@@ -297,7 +297,7 @@ impl<S: Shader> Kernel for BandKernel<'_, S> {
                     planes,
                     self.shader,
                     &lanes,
-                    o.interpolation,
+                    t.interpolation,
                     y0,
                     y1,
                     pass,

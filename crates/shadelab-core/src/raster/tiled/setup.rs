@@ -84,6 +84,10 @@ pub(crate) struct Triangle {
     /// For the triangles of a self-crossing polygon: the polygon's number + 1,
     /// so each pixel is drawn once per polygon; 0 otherwise.
     pub once: u32,
+    /// How its attributes are interpolated, set by setup
+    /// ([`Triangle::interpolated`]): the frame's mode, but screen mode for
+    /// a triangle whose corners have the same w.
+    pub interpolation: Interpolation,
 }
 
 /// Snapped extents (in x and in y) below this many units, 64 pixels, keep
@@ -159,7 +163,33 @@ impl Triangle {
             color: 0,
             flip: 1.0,
             once: 0,
+            interpolation: Interpolation::Perspective,
         })
+    }
+
+    /// This triangle, to be interpolated in the frame's mode
+    /// `interpolation`, its corners' 1/w being `inv_w`.
+    ///
+    /// A triangle whose three corners have the same 1/w is drawn in screen
+    /// mode whatever the frame's: attribute/w linear, times w, is the
+    /// attribute linear, exactly in real arithmetic, and its planes are the
+    /// attributes' own. Each pixel then takes its colours (or normal and
+    /// position) from their planes alone, without w and its rounding: a
+    /// Gouraud pair of the full-screen quad does without its three
+    /// multiplies by w (docs/conventions.md, "The shading methods";
+    /// BENCHMARKS.md, "Triangles of equal w drawn in screen mode").
+    #[inline(always)]
+    pub fn interpolated(self, interpolation: Interpolation, inv_w: [f32; 3]) -> Triangle {
+        let same_w = inv_w[0] == inv_w[1] && inv_w[1] == inv_w[2];
+        let interpolation = if same_w {
+            Interpolation::Screen
+        } else {
+            interpolation
+        };
+        Triangle {
+            interpolation,
+            ..self
+        }
     }
 
     /// Whether the edge functions `a·x + b·y + c` stay within `i32` over
@@ -217,23 +247,23 @@ impl Triangle {
     }
 
     /// The planes of depth and, when `attrs > 0`, of 1/w and the first
-    /// `attrs` attributes (divided by w in perspective mode): the first
-    /// [`plane_count`]`(attrs)` entries. The arithmetic per plane is the
-    /// SIMD backend's ([`Simd::solve_planes`], the same bits on every one).
+    /// `attrs` attributes (divided by w in the triangle's perspective mode,
+    /// [`Triangle::interpolation`]): the first [`plane_count`]`(attrs)`
+    /// entries. The arithmetic per plane is the SIMD backend's
+    /// ([`Simd::solve_planes`], the same bits on every one).
     #[inline(always)]
     pub fn planes<S: Simd, const N: usize>(
         &self,
         s: S,
         v: &[ScreenVertex<N>; 3],
         attrs: usize,
-        interpolation: Interpolation,
     ) -> [Plane; PLANES] {
         // The values at the three corners, one array per corner so that
         // the per-plane arithmetic is the same operations on each lane.
         let mut q = [[0f64; SOLVE_LANES]; 3];
         for i in 0..3 {
             let inv_w = f64::from(v[i].inv_w);
-            let scale = match interpolation {
+            let scale = match self.interpolation {
                 Interpolation::Perspective => inv_w,
                 Interpolation::Screen => 1.0,
             };
@@ -303,7 +333,8 @@ mod tests {
     fn planes_reproduce_vertex_values() {
         let tri = [v(300, 200), v(900, 2000), v(2500, 700)];
         let t = Triangle::edges(tri.map(|v| v.x), tri.map(|v| v.y), 64, 64).unwrap();
-        let planes = t.planes(crate::simd::Portable, &tri, 1, Interpolation::Screen);
+        let t = t.interpolated(Interpolation::Screen, tri.map(|v| v.inv_w));
+        let planes = t.planes(crate::simd::Portable, &tri, 1);
         assert_eq!(plane_count(1), 3);
         // attr = x + 2y in snapped units = 256·(X + 2Y) in pixels.
         let p = planes[2];

@@ -22,16 +22,17 @@
 //! Pairs start at a multiple of 16 columns, a cache line of the buffers
 //! (`depth_buffer.rs`), after a lone first block where needed.
 //!
-//! A row's whole pairs run in one of four instances of one loop, chosen
-//! once per row so that no pair tests anything but its depths: w per pixel;
-//! w for the whole row (or 1, not needed); the same without Gouraud's
-//! guard before its conversion to bytes, where [`planes_below`] shows that
-//! no lane of the row can reach 2^31 (the guard's only effect is on such
-//! values, so the bytes are the same); and, where the row's colours are
-//! all in `[0, 256)` (nearly every row of a large triangle, shown the same
-//! way), without the saturation either, which lets the AVX-512 lanes
-//! shift each byte into place where the packs shuffled
-//! ([`crate::simd::Lanes::store_bytes_within`]).
+//! A row's whole pairs run in one of seven instances of one loop, chosen
+//! once per row so that no pair tests anything but its depths. w per
+//! pixel; or w for the whole row, or none (screen mode, which takes the
+//! full-screen quad too: `Triangle::interpolated`), each of these two in
+//! three: as they are; without Gouraud's guard before its conversion to
+//! bytes, where [`planes_below`] shows that no lane of the row can reach
+//! 2^31 (the guard's only effect is on such values, so the bytes are the
+//! same); and, where the row's colours are all in `[0, 256)` (nearly every
+//! row of a large triangle, shown the same way), without the saturation
+//! either, which lets the AVX-512 lanes shift each byte into place where
+//! the packs shuffled ([`crate::simd::Lanes::store_bytes_within`]).
 //!
 //! Phong's spans use the same pairs (`phong_span.rs`).
 
@@ -170,30 +171,36 @@ impl<S: Simd> Pairs<S> {
         )
     }
 
-    /// As [`Pairs::attributes_at`] given w for the row (1 where w is not
-    /// needed: `a·1 = a` exactly), which multiplies without a test per
-    /// pair: the same bits.
+    /// As [`Pairs::attributes_at`] given w for the row if `TIMES_W`, else
+    /// where w is not needed: the same bits, without a test per pair.
     ///
     /// The loops repeat [`interpolate_planes`]' on purpose: one helper
     /// shared by both (a4a03dc) compiled the blocks of 8 worse and made the
     /// meshes' 1080p Gouraud frames 9–11 % slower (BENCHMARKS.md, "The
     /// pairs' attributes from walk.rs's own helper").
     #[inline(always)]
-    fn attributes_times<Sh: Shader>(&self, column: S::F16, w: S::F16) -> [S::F16; MAX_ATTRS] {
+    fn attributes_times<Sh: Shader, const TIMES_W: bool>(
+        &self,
+        column: S::F16,
+        w: S::F16,
+    ) -> [S::F16; MAX_ATTRS] {
         let mut attrs = [w.splat_like(0.0); MAX_ATTRS];
         for k in 0..Sh::ATTRS {
             attrs[k] = column.mul_add(self.dx[2 + k], self.at_row[2 + k]);
         }
-        for a in &mut attrs[Sh::SCALE_FREE..Sh::ATTRS] {
-            *a = *a * w;
+        if TIMES_W {
+            for a in &mut attrs[Sh::SCALE_FREE..Sh::ATTRS] {
+                *a = *a * w;
+            }
         }
         attrs
     }
 
     /// Whether every lane the row's whole pairs hand to
     /// [`Shader::shade_lanes`] with [`Pairs::attributes_times`] and the
-    /// row's w lies in `[0, 256)`, given the span `left..right`, in which
-    /// all of a whole pair's lanes lie: [`known::BYTES`].
+    /// row's w (1 where w is not needed: `a·1 = a` exactly) lies in
+    /// `[0, 256)`, given the span `left..right`, in which all of a whole
+    /// pair's lanes lie: [`known::BYTES`].
     ///
     /// Each attribute is `x·dx + at_row`, then times w, in correctly
     /// rounded steps of the one variable x, so monotonic in x (as in
@@ -210,7 +217,7 @@ impl<S: Simd> Pairs<S> {
         let x0 = f.t.x0;
         let ends = [left - x0, right - 1 - x0].map(|x| x as f32);
         let both = self.sixteen.halves(ends);
-        all_in_bytes(Sh::ATTRS, &self.attributes_times::<Sh>(both, w))
+        all_in_bytes(Sh::ATTRS, &self.attributes_times::<Sh, true>(both, w))
     }
 
     /// Whether every lane the row's whole pairs hand to
@@ -301,52 +308,84 @@ pub(super) fn fill_span<S: Simd, Sh: Shader>(
     let mut fragments = blocks(s, f, row, (x, left, right), depth_head, color_head);
     let x = x + head as i32;
     let mut pairs = Pairs::new(s, f, row.0, (x, left, right));
-    // w for the whole row, 1 where no attribute needs it, or `None`: per
-    // pixel. The loop below is compiled for each case, with no test per
-    // pair.
-    let w = match pairs.row_w(f, row.0) {
-        Some(w) => Some(w),
-        None if needs_w(f.interpolation, (Sh::ATTRS, Sh::SCALE_FREE)) => None,
-        None => Some(pairs.sixteen.splat_like(1.0)),
+    // w for the whole row, none needed (then 1), or per pixel (then not
+    // this one, which is unused). The loop below is compiled for each
+    // case, with no test per pair.
+    let (w, from) = match pairs.row_w(f, row.0) {
+        Some(w) => (w, w_from::ROW),
+        None if needs_w(f.interpolation, (Sh::ATTRS, Sh::SCALE_FREE)) => {
+            (pairs.sixteen, w_from::PIXEL)
+        }
+        None => (pairs.sixteen.splat_like(1.0), w_from::NONE),
     };
     let (depth_pairs, depth_rest) = depth.as_chunks_mut::<16>();
     let (color_pairs, color_rest) = color.as_chunks_mut::<16>();
     let count = depth_pairs.len();
     let buffers = (depth_pairs, color_pairs);
     let span = (x, left, right);
-    // Gouraud's conversion to bytes guards against values of 2^31 and
-    // more (a sliver's planes can reach them), and gathers each pixel's
-    // bytes with shuffles. A row whose attributes are bytes everywhere
-    // (nearly all rows of a large triangle with w the same along them)
-    // takes a loop with neither where the lanes allow (`in_bytes`); else
-    // one whose attributes stay below 2^31, without the guard: the same
-    // bytes. Worth a check from a few pairs on.
-    use known::{ANYTHING, BELOW_2_31, BYTES};
-    fragments += match w {
-        Some(w) if count >= 4 => {
-            if shifts && pairs.in_bytes(f, w, (left, right)) {
-                whole_pairs::<S, Sh, BYTES, true>(s, f, row, &mut pairs, w, span, buffers)
-            } else if pairs.below(f, Some(w), (left, right)) {
-                whole_pairs::<S, Sh, BELOW_2_31, true>(s, f, row, &mut pairs, w, span, buffers)
-            } else {
-                whole_pairs::<S, Sh, ANYTHING, true>(s, f, row, &mut pairs, w, span, buffers)
-            }
+    let known = (shifts, w);
+    fragments += match from {
+        w_from::ROW => {
+            known_pairs::<S, Sh, { w_from::ROW }>(s, f, row, &mut pairs, known, span, buffers)
         }
-        Some(w) => whole_pairs::<S, Sh, ANYTHING, true>(s, f, row, &mut pairs, w, span, buffers),
-        None => {
-            let unused = pairs.sixteen;
-            whole_pairs::<S, Sh, ANYTHING, false>(s, f, row, &mut pairs, unused, span, buffers)
+        w_from::NONE => {
+            known_pairs::<S, Sh, { w_from::NONE }>(s, f, row, &mut pairs, known, span, buffers)
         }
+        _ => whole_pairs::<S, Sh, { known::ANYTHING }, { w_from::PIXEL }>(
+            s, f, row, &mut pairs, w, span, buffers,
+        ),
     };
     let x = x + 16 * count as i32;
     fragments + blocks(s, f, row, (x, left, right), depth_rest, color_rest)
 }
 
-/// The pairs of blocks of [`fill_span`] from column `x`, in `buffers`'
-/// depths and colours: with w for the whole row ([`Pairs::attributes_times`])
-/// if `ROW_W`, else per pixel; with [`Shader::shade_lanes`]'s `KNOWN`.
+/// How a row's whole pairs take w ([`whole_pairs`]' `W`).
+mod w_from {
+    /// Per pixel, the reciprocal of the 1/w plane there.
+    pub(super) const PIXEL: u8 = 0;
+    /// The row's ([`super::Pairs::row_w`]), one value for the whole row.
+    pub(super) const ROW: u8 = 1;
+    /// Not needed: screen mode, or no attribute divided by w.
+    pub(super) const NONE: u8 = 2;
+}
+
+/// [`whole_pairs`] with w the row's or not needed (`W`; `w` is then 1),
+/// and what is known of the attributes from the span's ends.
+///
+/// Gouraud's conversion to bytes guards against values of 2^31 and more
+/// (a sliver's planes can reach them), and gathers each pixel's bytes with
+/// shuffles. A row whose attributes are bytes everywhere (nearly all rows
+/// of a large triangle with w the same along them) takes a loop with
+/// neither where the lanes allow (`shifts`, [`Pairs::in_bytes`]); else
+/// one whose attributes stay below 2^31, without the guard: the same
+/// bytes. Worth a check from a few pairs on.
 #[inline(always)]
-fn whole_pairs<S: Simd, Sh: Shader, const KNOWN: u8, const ROW_W: bool>(
+fn known_pairs<S: Simd, Sh: Shader, const W: u8>(
+    s: S,
+    f: &Fill<'_, S, Sh>,
+    row: &BlockRow<S>,
+    pairs: &mut Pairs<S>,
+    (shifts, w): (bool, S::F16),
+    span: Span,
+    buffers: (&mut [[f32; 16]], &mut [[i32; 16]]),
+) -> u32 {
+    use known::{ANYTHING, BELOW_2_31, BYTES};
+    let (_, left, right) = span;
+    let some = buffers.0.len() >= 4;
+    if some && shifts && pairs.in_bytes(f, w, (left, right)) {
+        whole_pairs::<S, Sh, BYTES, W>(s, f, row, pairs, w, span, buffers)
+    } else if some && pairs.below(f, Some(w), (left, right)) {
+        whole_pairs::<S, Sh, BELOW_2_31, W>(s, f, row, pairs, w, span, buffers)
+    } else {
+        whole_pairs::<S, Sh, ANYTHING, W>(s, f, row, pairs, w, span, buffers)
+    }
+}
+
+/// The pairs of blocks of [`fill_span`] from column `x`, in `buffers`'
+/// depths and colours: with w as [`w_from`] `W` says (`w`: the row's, or
+/// 1 where none is needed); with [`Shader::shade_lanes`]'s `KNOWN`.
+#[inline(always)]
+fn whole_pairs<S: Simd, Sh: Shader, const KNOWN: u8, const W: u8>(
     s: S,
     f: &Fill<'_, S, Sh>,
     row: &BlockRow<S>,
@@ -360,10 +399,10 @@ fn whole_pairs<S: Simd, Sh: Shader, const KNOWN: u8, const ROW_W: bool>(
         let (z, pass) = pairs.depth_test(s, depth);
         if pass == 0xffff {
             z.store_to(depth);
-            let attrs = if ROW_W {
-                pairs.attributes_times::<Sh>(pairs.column, w)
-            } else {
-                pairs.attributes(f, None)
+            let attrs = match W {
+                w_from::ROW => pairs.attributes_times::<Sh, true>(pairs.column, w),
+                w_from::NONE => pairs.attributes_times::<Sh, false>(pairs.column, w),
+                _ => pairs.attributes(f, None),
             };
             f.shader.shade_lanes::<_, KNOWN>(f.color, &attrs, color);
             fragments += 16;

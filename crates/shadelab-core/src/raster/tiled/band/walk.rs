@@ -683,10 +683,11 @@ pub(super) fn needs_w(interpolation: Interpolation, (count, scale_free): (usize,
 }
 
 /// w along a row of a triangle whose 1/w plane does not change along x
-/// (`dx1 == 0`, as when its corners' w are equal: a triangle parallel to
-/// the screen), given the plane's value at the row `inv_w`, in the lanes
-/// of `like`; `None` otherwise, or when w is not needed (see
-/// [`interpolate_planes`]).
+/// (`dx1 == 0`: a triangle parallel to the rows, whose w changes from row
+/// to row only; one parallel to the screen, its corners' w equal, is drawn
+/// in screen mode, `Triangle::interpolated`), given the plane's value at
+/// the row `inv_w`, in the lanes of `like`; `None` otherwise, or when w is
+/// not needed (see [`interpolate_planes`]).
 ///
 /// Each lane's w is then `recip(x·dx1 + inv_w)` with `x·dx1 = ±0` (the
 /// columns are finite), which is `recip(inv_w)` exactly for a nonzero
