@@ -332,7 +332,13 @@ impl<S: Simd, const A: usize> PolygonSink<ALL_ATTRS> for Setup<'_, '_, S, A> {
         if t.covers_no_centre() {
             return;
         }
-        let mut t = t.interpolated(options.interpolation, p.map(|p| p.inv_w));
+        // Flat's triangles interpolate nothing: their mode is never read
+        // (`walk::needs_w`), and the test is left out of their loop.
+        let mut t = if A == 0 {
+            t
+        } else {
+            t.interpolated(options.interpolation, p.map(|p| p.inv_w))
+        };
         if A == 0 || A == ALL_ATTRS {
             self.flat_evaluations += u64::from(frame.counts_flat(Some(t.y0)));
             // As `flat_surface`, for a front face.
