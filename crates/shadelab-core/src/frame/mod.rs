@@ -551,6 +551,48 @@ mod tests {
         assert!(renderer.spatial.has_copy() && !renderer.tiled.met_ties());
     }
 
+    /// The spatial copy numbers the normals its own way: when the scene's
+    /// normals take other values under the same indices (another
+    /// weighting), the copy's follow, and the frames drawn from it are
+    /// those of a renderer that never saw the old values.
+    #[test]
+    fn a_spatial_copy_follows_new_values_of_the_normals() {
+        let mesh = builtin_model("torus", Some(256)).unwrap();
+        let uniform = vertex_normals(&mesh, NormalWeighting::Uniform, None);
+        let area = vertex_normals(&mesh, NormalWeighting::Area, None);
+        assert_eq!(uniform.normals.len(), area.normals.len());
+        assert!(uniform.normals != area.normals);
+        let (low, high) = mesh.bounds();
+        let camera =
+            Camera::framing_sphere((low + high) / 2.0, (high - low).length() / 2.0, 40.0, 1.5);
+        let mut scene = lit_scene(mesh, uniform, camera.orbit(20.0, 35.0));
+        let options = RenderOptions {
+            width: 160,
+            height: 120,
+            shading: Shading::Gouraud,
+            ..RenderOptions::default()
+        };
+        let mut renderer = Renderer::new();
+        let mut image = Image::filled(1, 1, options.background);
+        for _ in 0..2 {
+            renderer.render_into(&scene, &options, &mut image).unwrap();
+        }
+        assert!(renderer.spatial.has_copy());
+        let indices = scene.normals.indices_id();
+        scene.normals.normals.clone_from(&area.normals);
+        assert_eq!(scene.normals.indices_id(), indices);
+        for shading in Shading::ALL {
+            let options = RenderOptions { shading, ..options };
+            renderer.render_into(&scene, &options, &mut image).unwrap();
+            assert!(renderer.spatial.has_copy());
+            let mut fresh = Image::filled(1, 1, options.background);
+            Renderer::new()
+                .render_into(&scene, &options, &mut fresh)
+                .unwrap();
+            assert!(image == fresh, "{shading:?}: the copy kept the old normals");
+        }
+    }
+
     /// A frame of the spatial copy that meets depth ties is drawn again
     /// from the scene, and must be: the copy's pixels differ. Later frames
     /// of the mesh are drawn from the scene alone.

@@ -16,9 +16,16 @@
 //! normals) a random one, and the dragon's frame took 2–3 times as long
 //! (BENCHMARKS.md, "The dragon in a spatial order, exactly"). The copy
 //! lists the same polygons, each with its corners in the same order, with
-//! each corner's normal the original's, and numbers the positions in the
-//! order its polygons first use them (the dragon numbers them in its
-//! faces' order, which would leave near polygons reading far positions).
+//! each corner's normal the original's, and numbers the positions and the
+//! normals in the order its polygons first use them (the dragon numbers
+//! them in its faces' order, which would leave near polygons reading far
+//! positions). The normals' numbers matter as much as the positions':
+//! Gouraud's vertex colours are stored by normal, and a thread's setup reads
+//! the colours of its own polygons. In the file's numbering those were lit
+//! by both threads alike, and with the two cores apart half of the colours
+//! crossed between them every frame (the bunny's and the dragon's Gouraud
+//! frames at 1.78× one thread's speed on two, flat's and Phong's at
+//! 1.86–1.9×: BENCHMARKS.md, "Normals numbered in the copy's order").
 //! The vertex normals are the ones summed in the file's order, every
 //! polygon's face normal, centroid and fan are the same numbers, and so is
 //! every fragment.
@@ -68,6 +75,10 @@ pub(crate) struct SpatialScene {
     key: (u64, u64),
     tied: bool,
     copy: Option<Scene>,
+    /// The scene's normals the copy's were last taken from, and, per
+    /// normal of the copy, the index of the scene's it is.
+    normals_of: Vec<Vec3>,
+    normal_order: Vec<u32>,
     geometry: Geometry,
 }
 
@@ -80,6 +91,8 @@ impl SpatialScene {
             key: (0, 0),
             tied: false,
             copy: None,
+            normals_of: Vec::new(),
+            normal_order: Vec::new(),
             geometry: Geometry::with_simd(level),
         }
     }
@@ -110,8 +123,10 @@ impl SpatialScene {
             self.key = key;
             self.tied = false;
             let (faces, centroids) = geometry.faces_of(&scene.mesh);
-            let (copy, faces, centroids) = spatial_copy(scene, faces, centroids)?;
+            let (copy, faces, centroids) =
+                spatial_copy(scene, faces, centroids, &mut self.normal_order)?;
             self.geometry.adopt_faces(&copy.mesh, faces, centroids);
+            self.normals_of.clone_from(&scene.normals.normals);
             self.copy = Some(copy);
         }
         if self.tied {
@@ -122,8 +137,19 @@ impl SpatialScene {
         copy.ambient = scene.ambient;
         copy.material = scene.material;
         copy.lights.clone_from(&scene.lights);
-        if copy.normals.normals != scene.normals.normals {
-            copy.normals.normals.clone_from(&scene.normals.normals);
+        // The same indices with other values (another weighting of the
+        // faces' normals, say): taken again, in the copy's numbering.
+        if self.normals_of != scene.normals.normals {
+            if scene.normals.normals.len() != self.normal_order.len() {
+                return None;
+            }
+            self.normals_of.clone_from(&scene.normals.normals);
+            let normals = self
+                .normal_order
+                .iter()
+                .map(|&n| self.normals_of[n as usize]);
+            copy.normals.normals.clear();
+            copy.normals.normals.extend(normals);
         }
         Some((copy, &mut self.geometry))
     }
@@ -142,12 +168,13 @@ impl SpatialScene {
 }
 
 /// `scene` with its mesh's polygons in [`spatial_order`], each with its
-/// corners in the same order and the same normals, and the positions
-/// numbered in the order those polygons first use them (so that near
-/// polygons read near positions; the ones no polygon uses come last); with
-/// the copy's face normals and centroids, `faces` and `centroids` (the
-/// mesh's) reordered. `None` if it cannot be made (it always can of a
-/// valid scene).
+/// corners in the same order and the same normals, and the positions and
+/// the normals numbered in the order those polygons first use them (so
+/// that near polygons read near positions and normals; the ones no polygon
+/// uses come last); with the copy's face normals and centroids, `faces`
+/// and `centroids` (the mesh's) reordered. `normal_order` receives, per
+/// normal of the copy, the index of the scene's it is. `None` if it cannot
+/// be made (it always can of a valid scene).
 ///
 /// Made on a frame of the viewer, which waits for it: every array is
 /// allocated once at its size, and nothing is computed again that the
@@ -156,6 +183,7 @@ fn spatial_copy(
     scene: &Scene,
     faces: &[Option<Vec3>],
     centroids: &[Vec3],
+    normal_order: &mut Vec<u32>,
 ) -> Option<(Scene, Vec<Option<Vec3>>, Vec<Vec3>)> {
     let mesh = &scene.mesh;
     let mut order = Vec::new();
@@ -183,15 +211,33 @@ fn spatial_copy(
         }
     }
     let copy = Mesh::from_parts(positions, corners, offsets).ok()?;
-    let mut corner = Vec::with_capacity(copy.corners().len());
-    for &f in &order {
-        corner.extend_from_slice(&scene.normals.corner()[mesh.corner_range(f as usize)]);
+    let old = &scene.normals.normals;
+    let mut renumbered = vec![u32::MAX; old.len()];
+    normal_order.clear();
+    let mut corner = Vec::with_capacity(scene.normals.corner().len());
+    if !scene.normals.corner().is_empty() {
+        for &f in &order {
+            for &n in &scene.normals.corner()[mesh.corner_range(f as usize)] {
+                let new = renumbered.get_mut(n as usize)?;
+                if *new == u32::MAX {
+                    *new = normal_order.len() as u32;
+                    normal_order.push(n);
+                }
+                corner.push(*new);
+            }
+        }
     }
+    for (n, &new) in renumbered.iter().enumerate() {
+        if new == u32::MAX {
+            normal_order.push(n as u32);
+        }
+    }
+    let normals = normal_order.iter().map(|&n| old[n as usize]).collect();
     let faces = order.iter().map(|&f| faces[f as usize]).collect();
     let centroids = order.iter().map(|&f| centroids[f as usize]).collect();
     let scene = Scene {
         mesh: copy,
-        normals: CornerNormals::new(scene.normals.normals.clone(), corner),
+        normals: CornerNormals::new(normals, corner),
         camera: scene.camera,
         ambient: scene.ambient,
         lights: scene.lights.clone(),
@@ -345,7 +391,9 @@ mod tests {
         let mesh = &scene.mesh;
         let (mut faces, mut centroids) = (Vec::new(), Vec::new());
         face_geometry(mesh, &mut faces, &mut centroids);
-        let (copy, copy_faces, copy_centroids) = spatial_copy(&scene, &faces, &centroids).unwrap();
+        let mut normal_order = Vec::new();
+        let (copy, copy_faces, copy_centroids) =
+            spatial_copy(&scene, &faces, &centroids, &mut normal_order).unwrap();
         let mut order = Vec::new();
         spatial_order(&centroids, &mut order);
         assert_eq!(copy.mesh.polygon_count(), mesh.polygon_count());
@@ -365,6 +413,21 @@ mod tests {
                     .collect()
             };
             assert_eq!(normals(&copy, new), normals(&scene, old as usize));
+        }
+        // The normals are numbered as the copy's polygons first use them,
+        // each the scene's normal that `normal_order` names.
+        assert_eq!(copy.normals.normals.len(), scene.normals.normals.len());
+        let mut next = 0;
+        for &n in copy.normals.corner() {
+            assert!(n <= next, "normal {n} used before normal {next}");
+            next = next.max(n + 1);
+        }
+        assert_eq!(next as usize, copy.normals.normals.len());
+        for (new, &old) in normal_order.iter().enumerate() {
+            assert_eq!(
+                copy.normals.normals[new],
+                scene.normals.normals[old as usize]
+            );
         }
         let (mut own_faces, mut own_centroids) = (Vec::new(), Vec::new());
         face_geometry(&copy.mesh, &mut own_faces, &mut own_centroids);

@@ -673,15 +673,24 @@ impl TiledRasterizer {
         let (vertex_table, lit, lit_back) = (&mut self.vertices, &mut self.lit, &mut self.lit_back);
         // Vertex lighting, like setup, runs the AVX2 build where AVX-512 is chosen.
         let (phong, simd) = (&self.phong, self.simd.without_avx512());
-        let light = || match method {
+        // The frame's vertex stage, then Gouraud's vertex lighting: each
+        // split in halves by rayon, the calling thread taking the first,
+        // as it takes the first run of setup's chunks (`order.rs`). A mesh
+        // drawn in a spatial order numbers its positions and normals as its
+        // polygons first use them (`frame/spatial.rs`), so a thread's setup
+        // reads mostly the positions it projected and the colours it lit,
+        // not lines from the other core. Run together (`rayon::join`), the
+        // two stages put the lighting on the other thread: the dragon's
+        // Gouraud frames 2–5 % slower on two threads with the cores apart,
+        // the bunny's within 1 % (BENCHMARKS.md, "Normals numbered in the
+        // copy's order").
+        let polygons = vertices.project();
+        let evaluations = match method {
             Some(Shading::Gouraud) | None => {
                 light_vertices(vertex_table, lit, lit_back, phong, simd, scene, options)
             }
             _ => 0,
         };
-        // The frame's vertex stage and Gouraud's vertex lighting are
-        // independent: run together, neither waits for the other's last task.
-        let (polygons, evaluations) = rayon::join(|| vertices.project(), light);
 
         let threads = rayon::current_num_threads().max(1);
         self.bands.resize_with(threads, Mutex::default);
