@@ -188,50 +188,24 @@ fn spatial_copy(
     let mesh = &scene.mesh;
     let mut order = Vec::new();
     spatial_order(centroids, &mut order);
-    let old = mesh.positions();
-    let mut renumbered = vec![u32::MAX; old.len()];
-    let mut positions = Vec::with_capacity(old.len());
+    let (old, mut position_order) = (mesh.positions(), Vec::new());
     let mut corners = Vec::with_capacity(mesh.corners().len());
+    let used = order.iter().flat_map(|&f| mesh.polygon(f as usize));
+    first_use(old.len(), used, &mut corners, &mut position_order)?;
+    let positions = position_order.iter().map(|&v| old[v as usize]).collect();
     let mut offsets = Vec::with_capacity(order.len() + 1);
     offsets.push(0);
-    for &f in &order {
-        for &v in mesh.polygon(f as usize) {
-            let new = &mut renumbered[v as usize];
-            if *new == u32::MAX {
-                *new = positions.len() as u32;
-                positions.push(old[v as usize]);
-            }
-            corners.push(*new);
-        }
-        offsets.push(corners.len() as u32);
-    }
-    for (v, &new) in renumbered.iter().enumerate() {
-        if new == u32::MAX {
-            positions.push(old[v]);
-        }
-    }
+    offsets.extend(order.iter().scan(0, |at, &f| {
+        *at += mesh.polygon(f as usize).len() as u32;
+        Some(*at)
+    }));
     let copy = Mesh::from_parts(positions, corners, offsets).ok()?;
-    let old = &scene.normals.normals;
-    let mut renumbered = vec![u32::MAX; old.len()];
-    normal_order.clear();
-    let mut corner = Vec::with_capacity(scene.normals.corner().len());
-    if !scene.normals.corner().is_empty() {
-        for &f in &order {
-            for &n in &scene.normals.corner()[mesh.corner_range(f as usize)] {
-                let new = renumbered.get_mut(n as usize)?;
-                if *new == u32::MAX {
-                    *new = normal_order.len() as u32;
-                    normal_order.push(n);
-                }
-                corner.push(*new);
-            }
-        }
-    }
-    for (n, &new) in renumbered.iter().enumerate() {
-        if new == u32::MAX {
-            normal_order.push(n as u32);
-        }
-    }
+    let (old, corner_normals) = (&scene.normals.normals, scene.normals.corner());
+    let mut corner = Vec::with_capacity(corner_normals.len());
+    let used = order
+        .iter()
+        .flat_map(|&f| &corner_normals[mesh.corner_range(f as usize)]);
+    first_use(old.len(), used, &mut corner, normal_order)?;
     let normals = normal_order.iter().map(|&n| old[n as usize]).collect();
     let faces = order.iter().map(|&f| faces[f as usize]).collect();
     let centroids = order.iter().map(|&f| centroids[f as usize]).collect();
@@ -244,6 +218,32 @@ fn spatial_copy(
         material: scene.material,
     };
     Some((scene, faces, centroids))
+}
+
+/// Numbers `count` items in the order that `used`, the copy's corners,
+/// first use them: pushes each corner's new number onto `corners`, and
+/// fills `order` with the old index of each new number (the items no
+/// corner uses last, in their order). `None` if a corner names an item
+/// past `count`.
+fn first_use<'a>(
+    count: usize,
+    used: impl Iterator<Item = &'a u32>,
+    corners: &mut Vec<u32>,
+    order: &mut Vec<u32>,
+) -> Option<()> {
+    let mut renumbered = vec![u32::MAX; count];
+    order.clear();
+    for &old in used {
+        let new = renumbered.get_mut(old as usize)?;
+        if *new == u32::MAX {
+            *new = order.len() as u32;
+            order.push(old);
+        }
+        corners.push(*new);
+    }
+    let unused = (0..count as u32).filter(|&old| renumbered[old as usize] == u32::MAX);
+    order.extend(unused);
+    Some(())
 }
 
 /// Bits of the Morton code per axis.
