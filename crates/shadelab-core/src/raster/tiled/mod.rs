@@ -110,7 +110,7 @@ use rayon::prelude::*;
 use self::band::{band_rows, Band, Colors, Depths, Pass, RowWrite};
 
 use self::chunk::{band_columns, Chunk, Frame, SetupKernel};
-use self::order::{band_cost, by_cost, chunk_cost, Borrows, Job, Jobs};
+use self::order::{band_cost, by_cost, chunk_cost, Borrows, Job, Jobs, Tail};
 use self::placement::{HandBack, Placement};
 pub(crate) use self::setup::BAND_ROWS;
 use self::setup::{plane_count, PLANES};
@@ -523,7 +523,7 @@ impl Rasterize for TiledRasterizer {
             let cost = band_cost(chunks, index, size, method);
             Job::new(index, cost, [rows, Default::default(), Default::default()])
         }));
-        let (fragments, covered, ties) = by_cost(&mut jobs, &draw, &add_drawn);
+        let (fragments, covered, ties) = by_cost(&mut jobs, Tail::PerEnd, &draw, &add_drawn);
         self.band_jobs.keep(jobs);
         self.ties = ties;
         stats.fragments_shaded += fragments;
@@ -632,7 +632,7 @@ impl TiledRasterizer {
             let index = first_band + k;
             Job::new(index, band_cost(chunks, index, size, None), [f, g, p])
         }));
-        let (fragments, covered, ties) = by_cost(&mut jobs, &draw, &add_drawn);
+        let (fragments, covered, ties) = by_cost(&mut jobs, Tail::PerEnd, &draw, &add_drawn);
         self.band_jobs.keep(jobs);
         self.ties = ties;
         let (flat_evaluations, vertex_evaluations) = self.evaluations;
@@ -732,7 +732,7 @@ impl TiledRasterizer {
                 },
             );
         };
-        by_cost(&mut jobs, &set_up, &|(), ()| ());
+        by_cost(&mut jobs, Tail::One, &set_up, &|(), ()| ());
         self.setup_jobs.keep(jobs);
         self.chunks = chunks;
 

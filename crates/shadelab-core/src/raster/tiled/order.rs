@@ -104,10 +104,11 @@ fn relend<T, U>(mut jobs: Vec<Option<Job<T>>>) -> Vec<Option<Job<U>>> {
 /// set apart as the tail. The others are cut into one run of neighbouring
 /// jobs per thread, of about the same estimated cost ([`cut_point`], again
 /// in each part for more than two threads). A thread does its run in
-/// order, then takes jobs of the tail, costliest first, from one queue
-/// until none is left: what the estimates got wrong is made up with cheap
-/// jobs. Rayon halves each run for a thread that has nothing left to do.
-pub(super) fn by_cost<T, R, F, A>(jobs: &mut [Option<Job<T>>], run: &F, add: &A) -> R
+/// order, then takes jobs of the tail, costliest first, until none is
+/// left: what the estimates got wrong is made up with cheap jobs. The tail
+/// is one queue, or one per end of the runs ([`Tail`]). Rayon halves each
+/// run for a thread that has nothing left to do.
+pub(super) fn by_cost<T, R, F, A>(jobs: &mut [Option<Job<T>>], tail: Tail, run: &F, add: &A) -> R
 where
     T: Send,
     R: Default + Send,
@@ -122,20 +123,41 @@ where
             add(counts, run(job.index, job.work))
         });
     }
-    let runs = set_tail_apart(jobs);
-    let (runs, tail) = jobs.split_at_mut(runs);
+    let (runs, front) = set_tail_apart(jobs, tail);
+    let (runs, tail_jobs) = jobs.split_at_mut(runs);
+    let (front, back) = tail_jobs.split_at_mut(front);
+    let queues = [Queue::new(front), Queue::new(back)];
     let cuts = threads.next_power_of_two().trailing_zeros();
-    in_runs(runs, cuts, &Mutex::new(tail.iter_mut()), run, add)
+    // One queue: every thread takes from the front's.
+    let end = match tail {
+        Tail::One => Some(End::Front),
+        Tail::PerEnd => None,
+    };
+    in_runs(runs, cuts, &queues, end, run, add)
 }
 
-/// The shared tail's queue.
-type Tail<'s, T> = Mutex<std::slice::IterMut<'s, Option<Job<T>>>>;
+/// How the threads share the tail ([`by_cost`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Tail {
+    /// One queue, costliest first, for jobs whose output no thread keeps:
+    /// setup's chunks, whose bins are read by every band wherever they
+    /// were written. (Setup from two queues, as [`Tail::PerEnd`], made the
+    /// bunny's two-thread frames 1 % slower: its cheap chunks, taken apart
+    /// by index, balanced less well.)
+    One,
+    /// Two queues, one per end of the runs ([`set_tail_apart`]), for jobs
+    /// whose output stays in the cache of the thread that wrote it: the
+    /// bands, whose image rows the next frame writes again.
+    PerEnd,
+}
 
-/// [`by_cost`] of `jobs` cut `cuts` more times, then of the `tail`.
+/// [`by_cost`] of `jobs` cut `cuts` more times, then of the `tail`, taken
+/// first from the queue of the thread's `end` (the first cut's side).
 fn in_runs<T, R, F, A>(
     jobs: &mut [Option<Job<T>>],
     cuts: u32,
-    tail: &Tail<'_, T>,
+    tail: &[Queue<'_, T>; 2],
+    end: Option<End>,
     run: &F,
     add: &A,
 ) -> R
@@ -146,6 +168,10 @@ where
     A: Fn(R, R) -> R + Sync,
 {
     if cuts == 0 || jobs.len() < 2 {
+        let (own, other) = match end.unwrap_or(End::Front) {
+            End::Front => (&tail[0], &tail[1]),
+            End::Back => (&tail[1], &tail[0]),
+        };
         let mut counts = jobs
             .par_iter_mut()
             // Each job on its own, so that a thread out of work can take
@@ -154,24 +180,74 @@ where
             .filter_map(|slot| slot.take())
             .map(|job| run(job.index, job.work))
             .reduce(R::default, add);
-        loop {
-            // The lock is held for the taking alone.
-            let slot = tail
-                .lock()
-                .unwrap_or_else(|poisoned| poisoned.into_inner())
-                .next();
-            let Some(job) = slot.and_then(Option::take) else {
-                return counts;
-            };
+        // Its own queue's jobs costliest first, then the other's cheapest
+        // first (its threads take the costliest).
+        while let Some(job) = own
+            .take(Iterator::next)
+            .or_else(|| other.take(|jobs| jobs.next_back()))
+        {
             counts = add(counts, run(job.index, job.work));
         }
+        return counts;
     }
     let (before, after) = jobs.split_at_mut(cut_point(jobs));
     let (a, b) = rayon::join(
-        || in_runs(before, cuts - 1, tail, run, add),
-        || in_runs(after, cuts - 1, tail, run, add),
+        || {
+            in_runs(
+                before,
+                cuts - 1,
+                tail,
+                Some(end.unwrap_or(End::Front)),
+                run,
+                add,
+            )
+        },
+        || {
+            in_runs(
+                after,
+                cuts - 1,
+                tail,
+                Some(end.unwrap_or(End::Back)),
+                run,
+                add,
+            )
+        },
     );
     add(a, b)
+}
+
+/// Which part of the tail a thread takes its jobs from first: the threads
+/// of the runs before the first cut, the front's; the others, the back's
+/// (see [`set_tail_apart`]).
+#[derive(Clone, Copy)]
+enum End {
+    Front,
+    Back,
+}
+
+/// One part of the tail, as a queue shared by the threads. Aligned to
+/// keep each part's lock on cache lines of its own: a thread taking jobs
+/// from its own part does not take the line of the other's.
+#[repr(align(128))]
+struct Queue<'s, T>(Mutex<std::slice::IterMut<'s, Option<Job<T>>>>);
+
+impl<'s, T> Queue<'s, T> {
+    fn new(jobs: &'s mut [Option<Job<T>>]) -> Queue<'s, T> {
+        Queue(Mutex::new(jobs.iter_mut()))
+    }
+
+    /// The job that `at` picks, if any is left.
+    fn take(
+        &self,
+        at: impl FnOnce(&mut std::slice::IterMut<'s, Option<Job<T>>>) -> Option<&'s mut Option<Job<T>>>,
+    ) -> Option<Job<T>> {
+        // The lock is held for the taking alone.
+        let slot = at(&mut self
+            .0
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner()));
+        slot.and_then(Option::take)
+    }
 }
 
 /// How much of the jobs' estimated cost the tail holds: a
@@ -180,9 +256,21 @@ const TAIL_SHARE: u64 = 8;
 
 /// Sets the tail apart (see [`by_cost`]): the cheapest jobs, whose costs
 /// add up to at most a [`TAIL_SHARE`]th of the total, go to the end of
-/// `jobs`, costliest first (ties in index order); the others stay before
-/// them in index order. Returns how many the others are.
-fn set_tail_apart<T>(jobs: &mut [Option<Job<T>>]) -> usize {
+/// `jobs`; the others stay before them in index order. Returns how many
+/// the others are, and how many of the tail's jobs are its front part.
+///
+/// With [`Tail::One`] the whole tail is the front part. With
+/// [`Tail::PerEnd`] it is cut in two by index ([`cut_point`]): the front
+/// part of lower index and the back part. Each part is costliest first
+/// (ties in index order). The threads of the runs before the first cut
+/// take the front part's jobs first, the others the back's ([`End`]): a
+/// band of the tail then goes to the same thread frame after frame, but
+/// where a thread takes from the other's part, and its image rows stay in
+/// that thread's cache. (From one queue, the tail's bands changed threads
+/// from frame to frame: the full-screen quad's 1920×1080 flat frames took
+/// 2–4 % longer on two threads with the cores apart; BENCHMARKS.md, "The
+/// tail's bands kept by their threads".)
+fn set_tail_apart<T>(jobs: &mut [Option<Job<T>>], queues: Tail) -> (usize, usize) {
     let total: u64 = jobs.iter().map(cost).sum();
     // Cheapest first (ties: the later first), then the tail's length.
     jobs.sort_unstable_by_key(|job| job.as_ref().map(|job| (job.cost, Reverse(job.index))));
@@ -191,11 +279,21 @@ fn set_tail_apart<T>(jobs: &mut [Option<Job<T>>]) -> usize {
         sum += cost(&jobs[tail]);
         tail += 1;
     }
-    // Costliest first: the tail at the end, as it should be.
-    jobs.reverse();
-    let runs = jobs.len() - tail;
-    jobs[..runs].sort_unstable_by_key(|job| job.as_ref().map(|job| job.index));
-    runs
+    let by_index = |job: &Option<Job<T>>| job.as_ref().map(|job| job.index);
+    let (tail, runs) = jobs.split_at_mut(tail);
+    runs.sort_unstable_by_key(by_index);
+    tail.sort_unstable_by_key(by_index);
+    let front = match queues {
+        Tail::PerEnd if tail.len() >= 2 => cut_point(tail),
+        _ => tail.len(),
+    };
+    let (before, after) = tail.split_at_mut(front);
+    for part in [before, after] {
+        part.sort_unstable_by_key(|job| (Reverse(cost(job)), by_index(job)));
+    }
+    let runs = runs.len();
+    jobs.rotate_left(jobs.len() - runs);
+    (runs, front)
 }
 
 /// A job's estimated cost, at least 1, so that jobs of unknown cost are
@@ -298,11 +396,13 @@ mod tests {
     }
 
     /// Every job is done once, with its own work, and the counts add up:
-    /// on one thread in index order, on more threads in any order.
+    /// on one thread in index order, on more threads in any order, with
+    /// the tail in one queue or two.
     #[test]
     fn every_job_once() {
         let costs: Vec<u64> = (0..200).map(|i| (i * 37) % 11).collect();
-        for threads in [1, 2, 3] {
+        let all = [1, 2, 3, 4].map(|threads| [(threads, Tail::One), (threads, Tail::PerEnd)]);
+        for (threads, queues) in all.into_iter().flatten() {
             let mut list = jobs(&costs);
             let order = std::sync::Mutex::new(Vec::new());
             let pool = rayon::ThreadPoolBuilder::new()
@@ -315,7 +415,7 @@ mod tests {
                 (1, index as u64)
             };
             let add = |a: (u64, u64), b: (u64, u64)| (a.0 + b.0, a.1 + b.1);
-            let counts = pool.install(|| by_cost(&mut list, &run, &add));
+            let counts = pool.install(|| by_cost(&mut list, queues, &run, &add));
             assert_eq!(counts, (200, (0..200).sum()));
             assert!(list.iter().all(Option::is_none));
             let mut order = order.into_inner().unwrap();
@@ -327,21 +427,76 @@ mod tests {
         }
     }
 
-    /// The tail: the cheapest jobs, an eighth of the cost, costliest first
-    /// at the end; the others in index order.
+    fn indices<T>(list: &[Option<Job<T>>]) -> Vec<usize> {
+        list.iter().map(|job| job.as_ref().unwrap().index).collect()
+    }
+
+    /// The tail: the cheapest jobs, an eighth of the cost, at the end, in
+    /// one part or two cut by index, each costliest first; the others in
+    /// index order.
     #[test]
     fn the_cheapest_jobs_are_set_apart() {
-        let mut list = jobs(&[40, 1, 30, 2, 0, 50, 2, 30, 1]);
-        // Total 157 (the 0 counts 1): the tail holds at most 19.
-        let runs = set_tail_apart(&mut list);
-        let order: Vec<usize> = list.iter().map(|job| job.as_ref().unwrap().index).collect();
-        assert_eq!(runs, 4);
-        assert_eq!(order, [0, 2, 5, 7, 3, 6, 1, 8, 4]);
+        let costs = [40, 1, 30, 2, 0, 50, 2, 30, 1];
+        // Total 157 (the 0 counts 1): the tail holds at most 19. It is 1,
+        // 3, 4, 6 and 8, of costs 1, 2, 1, 2 and 1.
+        let mut list = jobs(&costs);
+        assert_eq!(set_tail_apart(&mut list, Tail::One), (4, 5));
+        assert_eq!(indices(&list), [0, 2, 5, 7, 3, 6, 1, 4, 8]);
+        // Cut after 3: the front part holds 3 then 1, the back 6, 4 and 8.
+        let mut list = jobs(&costs);
+        assert_eq!(set_tail_apart(&mut list, Tail::PerEnd), (4, 2));
+        assert_eq!(indices(&list), [0, 2, 5, 7, 3, 1, 6, 4, 8]);
         // Equal costs: the last jobs make the tail.
         let mut list = jobs(&[5; 16]);
-        assert_eq!(set_tail_apart(&mut list), 14);
-        let order: Vec<usize> = list.iter().map(|job| job.as_ref().unwrap().index).collect();
-        assert_eq!(order, (0..16).collect::<Vec<_>>());
+        assert_eq!(set_tail_apart(&mut list, Tail::PerEnd), (14, 1));
+        assert_eq!(indices(&list), (0..16).collect::<Vec<_>>());
+        // A tail of one job is all front.
+        let mut list = jobs(&[5, 5, 5, 5, 1]);
+        assert_eq!(set_tail_apart(&mut list, Tail::PerEnd), (4, 1));
+    }
+
+    /// The order in which the tail's jobs are done while one thread's run
+    /// is held up: the other thread does them all, its own part's
+    /// costliest first, then, with two queues, the other part's from its
+    /// cheapest. So with the runs ending together each thread keeps to its
+    /// part, frame after frame.
+    #[test]
+    fn a_thread_takes_its_own_part_of_the_tail_first() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        use std::time::{Duration, Instant};
+        // Runs 0..4 and 4..8; the tail 8..14 (costs 1 to 6) is cut after
+        // 11: front 8..12, back 12..14.
+        let costs = [100, 100, 100, 100, 100, 100, 100, 100, 1, 2, 3, 4, 5, 6];
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        for (queues, expected) in [
+            (Tail::One, [13, 12, 11, 10, 9, 8]),
+            (Tail::PerEnd, [11, 10, 9, 8, 12, 13]),
+        ] {
+            let mut list = jobs(&costs);
+            let (tail, done) = (std::sync::Mutex::new(Vec::new()), AtomicUsize::new(0));
+            let run = |index: usize, _| {
+                if index >= 8 {
+                    tail.lock().unwrap().push(index);
+                    done.fetch_add(1, Ordering::SeqCst);
+                } else if index == 4 {
+                    // The second run's first job waits for the whole tail
+                    // (done before it, if one thread took both runs).
+                    let start = Instant::now();
+                    while done.load(Ordering::SeqCst) < 6 {
+                        assert!(
+                            start.elapsed() < Duration::from_secs(20),
+                            "the tail was not done"
+                        );
+                        std::thread::yield_now();
+                    }
+                }
+            };
+            pool.install(|| by_cost(&mut list, queues, &run, &|(), ()| ()));
+            assert_eq!(tail.into_inner().unwrap(), expected, "{queues:?}");
+        }
     }
 
     /// A band's cost: its triangles, the columns they span, its rows
