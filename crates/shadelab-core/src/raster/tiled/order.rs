@@ -12,9 +12,12 @@
 //! waking it cost about 50 µs more. So ([`by_cost`]):
 //!
 //! * **The cheapest jobs are kept for last**, a tail of about an eighth of
-//!   the estimated cost, taken costliest first from one queue by whichever
-//!   thread is free: what the estimates got wrong is made up with small
-//!   jobs, and the threads end within a few microseconds of each other.
+//!   the estimated cost, taken costliest first by whichever thread is free:
+//!   what the estimates got wrong is made up with small jobs, and the
+//!   threads end within a few microseconds of each other. Setup's tail is
+//!   one queue; the bands' is two, one per end of the runs ([`Tail`]), so
+//!   that a band of the tail is drawn by the same thread from frame to
+//!   frame and its image rows stay in that thread's cache.
 //! * **The others are cut into one run of neighbouring jobs per thread**,
 //!   of about the same estimated cost, each done in order. That keeps
 //!   what halving by count did well: the bins a thread's setup writes for a
