@@ -194,27 +194,11 @@ where
         return counts;
     }
     let (before, after) = jobs.split_at_mut(cut_point(jobs));
+    // The first cut gives each side its end; later cuts keep it.
+    let (first, second) = (end.or(Some(End::Front)), end.or(Some(End::Back)));
     let (a, b) = rayon::join(
-        || {
-            in_runs(
-                before,
-                cuts - 1,
-                tail,
-                Some(end.unwrap_or(End::Front)),
-                run,
-                add,
-            )
-        },
-        || {
-            in_runs(
-                after,
-                cuts - 1,
-                tail,
-                Some(end.unwrap_or(End::Back)),
-                run,
-                add,
-            )
-        },
+        || in_runs(before, cuts - 1, tail, first, run, add),
+        || in_runs(after, cuts - 1, tail, second, run, add),
     );
     add(a, b)
 }
@@ -285,9 +269,11 @@ fn set_tail_apart<T>(jobs: &mut [Option<Job<T>>], queues: Tail) -> (usize, usize
     let by_index = |job: &Option<Job<T>>| job.as_ref().map(|job| job.index);
     let (tail, runs) = jobs.split_at_mut(tail);
     runs.sort_unstable_by_key(by_index);
-    tail.sort_unstable_by_key(by_index);
     let front = match queues {
-        Tail::PerEnd if tail.len() >= 2 => cut_point(tail),
+        Tail::PerEnd if tail.len() >= 2 => {
+            tail.sort_unstable_by_key(by_index);
+            cut_point(tail)
+        }
         _ => tail.len(),
     };
     let (before, after) = tail.split_at_mut(front);
